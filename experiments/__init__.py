@@ -1,0 +1,1 @@
+"""What users run: planning, sweeps, benchmarks and reports, and the ``partfeeder`` CLI."""

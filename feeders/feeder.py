@@ -1,0 +1,267 @@
+"""The part feeder built from a design: walls, protuberance, start poses, goal (Fig. 1, Table 1).
+
+Fig. 3 of the paper is not in its text; the device is reconstructed from Fig. 1 (input chute A,
+pin B, exit chute C), Table 1's definitions and Table 2's ranges, as documented with pictures
+in ``docs/feeder-geometry.md``. In short (x right, y up, gravity along -y):
+
+* exit chute C: vertical, walls at ``x = -b/2`` and ``x = +b/2`` from ``y = 0`` down to
+  ``y = -2L`` (L the part length), closed at the bottom;
+* chamfer: both walls of C flare outward at angle ``alpha`` from horizontal up to depth ``c``
+  (a funnel whose mouth is ``b + 2c/tan(alpha)`` wide at ``y = c``);
+* cavity: floor at ``y = c``; left wall at ``x = e``; roof at the height of the input chute's
+  upper wall where it ends above the lip;
+* input chute A: a channel of width ``a`` and length ``d`` rising to the right at angle
+  ``theta``; its floor ends at the lip ``g`` (its lower left corner); closed at its top;
+* below the lip the cavity's right wall drops vertically to the floor or chamfer; when the lip
+  overhangs the exit chute (``g.x < b/2``) the underside runs from the lip to the chute's top
+  right corner;
+* protuberance B: a finger of thickness ``2r`` from the left wall to the tip centre ``f``,
+  ending in a half-disc of radius ``r`` (an exact rounded tip).
+
+Walls are convex quads of thickness ``WALL_THICKNESS`` on the outside of the free interior.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely.geometry import LineString, Point, Polygon
+
+from feeders.design import DesignParameters
+from feeders.part import DEFAULT_PEG, Peg
+from feeders.scene import Goal, InputSet, Pose, Scene, wrap_angle
+from feeders.shapes import Obstacles
+
+WALL_THICKNESS = 0.4
+START_CLEARANCE = 0.05  # gap between the part and the cap at the top of the input chute
+GOAL_YAW_TOL = 0.35  # rad: "heavy end down" within 20 degrees
+
+
+class DegenerateDesign(ValueError):
+    """A design whose geometry cannot be built; ``parameters`` names the values involved."""
+
+    def __init__(self, reason: str, parameters: tuple[str, ...]):
+        super().__init__(f"{reason} [parameters: {', '.join(parameters)}]")
+        self.reason = reason
+        self.parameters = parameters
+
+
+@dataclass(frozen=True)
+class Edge:
+    """One edge of the free interior, with the parameters that place it."""
+
+    start: tuple[float, float]
+    end: tuple[float, float]
+    label: str
+    parameters: tuple[str, ...]
+
+
+def _dedupe(points: list[tuple[tuple[float, float], str, tuple[str, ...]]]) -> list:
+    out: list = []
+    for p in points:
+        if out and math.dist(out[-1][0], p[0]) < 1e-9:
+            continue
+        out.append(p)
+    if len(out) > 1 and math.dist(out[0][0], out[-1][0]) < 1e-9:
+        out.pop()
+    return out
+
+
+def interior_edges(design: DesignParameters, part: Peg = DEFAULT_PEG) -> list[Edge]:
+    """The boundary of the free interior, counter-clockwise (interior on the left)."""
+    p = design
+    half_b = p.b / 2
+    depth = 2.0 * part.length
+    mouth = half_b + p.c / math.tan(p.alpha)
+    u = (math.cos(p.theta), math.sin(p.theta))
+    n = (-math.sin(p.theta), math.cos(p.theta))
+    g = (p.gx, p.gy)
+    top_floor = (g[0] + p.d * u[0], g[1] + p.d * u[1])
+    top_ceiling = (top_floor[0] + p.a * n[0], top_floor[1] + p.a * n[1])
+    lip_ceiling = (g[0] + p.a * n[0], g[1] + p.a * n[1])
+    roof_y = lip_ceiling[1]
+
+    # (vertex, label of the edge that starts at this vertex, parameters of that edge)
+    pts: list[tuple[tuple[float, float], str, tuple[str, ...]]] = [
+        ((-half_b, -depth), "exit chute bottom", ("b",)),
+        ((half_b, -depth), "exit chute right wall", ("b",)),
+    ]
+    if p.gx >= mouth:
+        pts += [
+            ((half_b, 0.0), "right chamfer", ("b", "c", "alpha")),
+            ((mouth, p.c), "cavity floor (right)", ("c", "gx")),
+            ((p.gx, p.c), "wall below the lip", ("gx", "gy", "c")),
+        ]
+    elif p.gx >= half_b:
+        pts += [
+            ((half_b, 0.0), "right chamfer", ("b", "c", "alpha")),
+            ((p.gx, (p.gx - half_b) * math.tan(p.alpha)), "wall below the lip", ("gx", "gy", "alpha")),
+        ]
+    else:
+        pts += [((half_b, 0.0), "underside of the lip", ("gx", "gy", "b"))]
+    pts += [
+        (g, "input chute floor", ("gx", "gy", "d", "theta")),
+        (top_floor, "input chute cap", ("a", "d", "theta")),
+        (top_ceiling, "input chute upper wall", ("a", "d", "theta", "gx", "gy")),
+        (lip_ceiling, "cavity roof", ("e", "a", "theta", "gy")),
+        ((p.e, roof_y), "left cavity wall", ("e",)),
+    ]
+    if p.e <= -mouth:
+        pts += [
+            ((p.e, p.c), "cavity floor (left)", ("c", "e")),
+            ((-mouth, p.c), "left chamfer", ("b", "c", "alpha")),
+        ]
+    else:
+        pts += [((p.e, (-half_b - p.e) * math.tan(p.alpha)), "left chamfer", ("b", "c", "alpha", "e"))]
+    pts += [((-half_b, 0.0), "exit chute left wall", ("b",))]
+    pts = _dedupe(pts)
+    return [
+        Edge(pts[i][0], pts[(i + 1) % len(pts)][0], pts[i][1], pts[i][2]) for i in range(len(pts))
+    ]
+
+
+def wall_quad(edge: Edge, thickness: float = WALL_THICKNESS) -> np.ndarray:
+    """The wall behind an interior edge: a CCW quad extruded outward (to the edge's right)."""
+    (x0, y0), (x1, y1) = edge.start, edge.end
+    length = math.hypot(x1 - x0, y1 - y0)
+    nx, ny = (y1 - y0) / length * thickness, -(x1 - x0) / length * thickness
+    return np.array([[x0, y0], [x0 + nx, y0 + ny], [x1 + nx, y1 + ny], [x1, y1]])
+
+
+def protuberance(design: DesignParameters) -> tuple[np.ndarray, np.ndarray]:
+    """The finger (CCW rectangle from inside the left wall to the tip) and its tip disc."""
+    p = design
+    root = p.e - WALL_THICKNESS
+    finger = np.array(
+        [[root, p.fy - p.r], [p.fx, p.fy - p.r], [p.fx, p.fy + p.r], [root, p.fy + p.r]]
+    )
+    return finger, np.array([p.fx, p.fy, p.r])
+
+
+def _check_crossings(edges: list[Edge]) -> None:
+    lines = [LineString([e.start, e.end]) for e in edges]
+    for i in range(len(edges)):
+        for j in range(i + 1, len(edges)):
+            adjacent = j == i + 1 or (i == 0 and j == len(edges) - 1)
+            inter = lines[i].intersection(lines[j])
+            if inter.is_empty:
+                continue
+            if adjacent and inter.geom_type == "Point":
+                continue
+            names = tuple(dict.fromkeys(edges[i].parameters + edges[j].parameters))
+            raise DegenerateDesign(
+                f"walls cross: the {edges[i].label} meets the {edges[j].label}", names
+            )
+
+
+def _pose_polygon(part: Peg, pose: Pose) -> Polygon:
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    body = part.body_vertices()
+    world = body @ np.array([[c, s], [-s, c]]) + np.array(pose[:2])
+    return Polygon(world)
+
+
+def build_feeder(
+    design: DesignParameters,
+    part: Peg = DEFAULT_PEG,
+    inputs: InputSet | None = None,
+    friction: float = 0.3,
+    gravity: tuple[float, float] = (0.0, -9.81),
+    name: str = "feeder",
+) -> Scene:
+    """The scene of the feeder with this design, or :class:`DegenerateDesign` with a reason.
+
+    Start poses: the part in the top of the input chute, centred across it, its end
+    ``START_CLEARANCE`` below the cap, heavy end leading (pointing down the chute) or
+    trailing. Goal: the centre of mass below the part length under the chute's mouth and
+    heavy end down within ``GOAL_YAW_TOL``.
+    """
+    p = design
+    if p.a <= part.width:
+        raise DegenerateDesign(
+            f"input chute width a = {p.a:g} is not wider than the part ({part.width:g})", ("a",)
+        )
+    if p.b <= part.width:
+        raise DegenerateDesign(
+            f"exit chute width b = {p.b:g} is not wider than the part ({part.width:g})", ("b",)
+        )
+    if p.d < part.length + 2 * START_CLEARANCE:
+        raise DegenerateDesign(
+            f"input chute length d = {p.d:g} cannot hold the part (length {part.length:g})",
+            ("d",),
+        )
+    if p.gy <= p.c:
+        raise DegenerateDesign(
+            f"the lip (g.y = {p.gy:g}) is not above the cavity floor (c = {p.c:g})", ("gy", "c")
+        )
+    edges = interior_edges(p, part)
+    _check_crossings(edges)
+    outline = np.array([e.start for e in edges])
+    interior = Polygon(outline)
+    if not interior.is_valid or interior.area <= 0:
+        raise DegenerateDesign("the walls do not enclose a cavity", ("e", "gx", "gy", "theta"))
+
+    finger, tip = protuberance(p)
+    tip_point = Point(p.fx, p.fy)
+    if not interior.contains(tip_point):
+        raise DegenerateDesign(
+            f"the protuberance tip f = ({p.fx:g}, {p.fy:g}) lies inside a wall", ("fx", "fy", "e", "c")
+        )
+    for edge in edges:
+        if edge.label in ("left cavity wall", "cavity floor (left)", "left chamfer"):
+            continue  # the finger grows out of the left side: touching it there is by design
+        if LineString([edge.start, edge.end]).distance(tip_point) <= p.r:
+            raise DegenerateDesign(
+                f"the protuberance (f, r = {p.r:g}) reaches the {edge.label}",
+                tuple(dict.fromkeys(("fx", "fy", "r", *edge.parameters))),
+            )
+
+    walls = [wall_quad(e) for e in edges]
+    labels = [e.label for e in edges] + ["protuberance finger", "protuberance tip"]
+    obstacles = Obstacles(tuple([*walls, finger]), tip.reshape(1, 3), tuple(labels))
+
+    u = np.array([math.cos(p.theta), math.sin(p.theta)])
+    nrm = np.array([-math.sin(p.theta), math.cos(p.theta)])
+    centre = np.array([p.gx, p.gy]) + (p.d - part.length / 2 - START_CLEARANCE) * u + p.a / 2 * nrm
+    starts: dict[str, Pose] = {}
+    for orientation, yaw in (("heavy_leading", p.theta + math.pi), ("heavy_trailing", p.theta)):
+        yaw = wrap_angle(yaw)
+        com = centre + part.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
+        starts[orientation] = (float(com[0]), float(com[1]), yaw)
+
+    solid = shapely.unary_union([Polygon(w) for w in walls] + [Polygon(finger), tip_point.buffer(p.r)])
+    for orientation, pose in starts.items():
+        if _pose_polygon(part, pose).intersection(solid).area > 1e-9:
+            raise DegenerateDesign(
+                f"the part does not fit at the top of the input chute ({orientation})",
+                ("a", "d", "theta"),
+            )
+
+    depth = 2.0 * part.length
+    heavy_below = part.length / 2 - part.com_offset
+    goal = Goal(
+        x_min=-p.b / 2,
+        x_max=p.b / 2,
+        y_min=-depth + heavy_below,
+        y_max=-part.length,
+        yaw=-math.pi / 2,
+        yaw_tol=GOAL_YAW_TOL,
+    )
+    xmin, ymin = outline.min(axis=0)
+    xmax, ymax = outline.max(axis=0)
+    return Scene(
+        name=name,
+        obstacles=obstacles,
+        part=part,
+        bounds=(float(xmin), float(xmax), float(ymin), float(ymax)),
+        starts=starts,
+        goal=goal,
+        gravity=gravity,
+        friction=friction,
+        inputs=inputs or InputSet(),
+        design=design,
+        outline=outline,
+    )

@@ -1,0 +1,201 @@
+"""Scenes read from YAML (``yaml.safe_load``), validated with errors naming field and range.
+
+Two kinds, chosen by which key is present::
+
+    feeder:                      # the parametric feeder
+      preset: table3             # or: design: {a: 1.1, b: 1.1086, ..., f: [x, y], g: [x, y]}
+    part: {length: 2.0, width: 1.0, mass: 1.0, heavy_fraction: 0.75}
+    friction: 0.3
+    gravity: [0.0, -9.81]
+    inputs: {max_speed: 1.0, max_turn: 1.0}
+
+    obstacles:                   # free-form: polygons (any simple polygon) and circles
+      - polygon: [[-5, -1], [5, -1], [5, 0], [-5, 0]]
+      - circle: {centre: [0, 2], radius: 0.5}
+    bounds: [-5, 5, 0, 6]        # x_min, x_max, y_min, y_max of the centre of mass
+    starts: {drop: [0, 4, 0]}    # name: [x, y, yaw]
+    goal: {x: [-1, 1], y: [0, 1], yaw: 0.0, yaw_tol: 0.3}
+
+Both may set ``name``, ``part``, ``friction``, ``gravity`` and ``inputs``.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from feeders.design import DesignError, DesignParameters, preset
+from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.part import Peg, PartError
+from feeders.scene import Goal, InputSet, Scene
+from feeders.shapes import Obstacles, ShapeError, convex_pieces
+
+
+class SceneError(ValueError):
+    """A scene file that cannot be read or is not valid; the message names the field."""
+
+
+_TOP_KEYS = {"name", "feeder", "obstacles", "bounds", "starts", "goal", "part", "friction",
+             "gravity", "inputs"}
+
+
+def _number(value: Any, field: str, low: float = -math.inf, high: float = math.inf) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SceneError(f"{field}: expected a number, got {value!r}")
+    value = float(value)
+    if not (math.isfinite(value) and low <= value <= high):
+        raise SceneError(f"{field} = {value!r} is outside the allowed range [{low:g}, {high:g}]")
+    return value
+
+
+def _numbers(value: Any, field: str, count: int) -> list[float]:
+    if not isinstance(value, (list, tuple)) or len(value) != count:
+        raise SceneError(f"{field}: expected a list of {count} numbers, got {value!r}")
+    return [_number(v, f"{field}[{i}]") for i, v in enumerate(value)]
+
+
+def _mapping(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
+    if not isinstance(value, dict):
+        raise SceneError(f"{field}: expected a mapping, got {value!r}")
+    unknown = sorted(set(value) - allowed)
+    if unknown:
+        raise SceneError(f"{field}: unknown key(s) {unknown}; allowed: {sorted(allowed)}")
+    return value
+
+
+def _part(spec: Any) -> Peg:
+    if spec is None:
+        return Peg.two_density()
+    spec = _mapping(spec, "part", {"length", "width", "mass", "heavy_fraction"})
+    args = {k: _number(v, f"part.{k}") for k, v in spec.items()}
+    try:
+        return Peg.two_density(**args)
+    except PartError as exc:
+        raise SceneError(str(exc)) from None
+
+
+def _inputs(spec: Any) -> InputSet:
+    if spec is None:
+        return InputSet()
+    spec = _mapping(spec, "inputs", {"max_speed", "max_turn"})
+    args = {k: _number(v, f"inputs.{k}", 1e-9, 1e3) for k, v in spec.items()}
+    return InputSet(**args)
+
+
+def _design(spec: Any) -> DesignParameters:
+    spec = _mapping(spec, "feeder", {"preset", "design"})
+    if ("preset" in spec) == ("design" in spec):
+        raise SceneError("feeder: give exactly one of 'preset' or 'design'")
+    try:
+        if "preset" in spec:
+            return preset(str(spec["preset"]))
+        if not isinstance(spec["design"], dict):
+            raise SceneError("feeder.design: expected a mapping of the 12 parameters")
+        return DesignParameters.from_mapping(spec["design"])
+    except DesignError as exc:
+        raise SceneError(f"feeder: {exc}") from None
+
+
+def _obstacles(spec: Any) -> Obstacles:
+    if not isinstance(spec, list) or not spec:
+        raise SceneError("obstacles: expected a non-empty list of {polygon: ...} or {circle: ...}")
+    polygons, circles, labels_p, labels_c = [], [], [], []
+    for i, item in enumerate(spec):
+        field = f"obstacles[{i}]"
+        item = _mapping(item, field, {"polygon", "circle", "label"})
+        label = str(item.get("label", field))
+        if ("polygon" in item) == ("circle" in item):
+            raise SceneError(f"{field}: give exactly one of 'polygon' or 'circle'")
+        if "polygon" in item:
+            pts = item["polygon"]
+            if not isinstance(pts, list):
+                raise SceneError(f"{field}.polygon: expected a list of [x, y] points")
+            pts = [_numbers(p, f"{field}.polygon[{k}]", 2) for k, p in enumerate(pts)]
+            try:
+                pieces = convex_pieces(pts, field=f"{field}.polygon")
+            except ShapeError as exc:
+                raise SceneError(str(exc)) from None
+            polygons += pieces
+            labels_p += [label] * len(pieces)
+        else:
+            c = _mapping(item["circle"], f"{field}.circle", {"centre", "radius"})
+            if "centre" not in c or "radius" not in c:
+                raise SceneError(f"{field}.circle: needs 'centre' and 'radius'")
+            cx, cy = _numbers(c["centre"], f"{field}.circle.centre", 2)
+            circles.append((cx, cy, _number(c["radius"], f"{field}.circle.radius", 1e-9, 1e6)))
+            labels_c.append(label)
+    return Obstacles(tuple(polygons), circles, tuple(labels_p + labels_c))
+
+
+def _goal(spec: Any) -> Goal:
+    spec = _mapping(spec, "goal", {"x", "y", "yaw", "yaw_tol"})
+    for key in ("x", "y", "yaw", "yaw_tol"):
+        if key not in spec:
+            raise SceneError(f"goal.{key} is required")
+    x = _numbers(spec["x"], "goal.x", 2)
+    y = _numbers(spec["y"], "goal.y", 2)
+    if x[0] >= x[1] or y[0] >= y[1]:
+        raise SceneError("goal.x and goal.y must be [low, high] with low < high")
+    return Goal(x[0], x[1], y[0], y[1], _number(spec["yaw"], "goal.yaw", -math.pi, math.pi),
+                _number(spec["yaw_tol"], "goal.yaw_tol", 1e-6, math.pi))
+
+
+def scene_from_dict(data: Any, name: str = "scene") -> Scene:
+    """Validate a parsed YAML document and build its scene."""
+    data = _mapping(data, "scene", _TOP_KEYS)
+    name = str(data.get("name", name))
+    part = _part(data.get("part"))
+    friction = _number(data.get("friction", 0.3), "friction", 0.0, 10.0)
+    gravity = tuple(_numbers(data.get("gravity", [0.0, -9.81]), "gravity", 2))
+    inputs = _inputs(data.get("inputs"))
+    if ("feeder" in data) == ("obstacles" in data):
+        raise SceneError("scene: give exactly one of 'feeder' (parametric) or 'obstacles' (free-form)")
+    if "feeder" in data:
+        extra = sorted({"bounds", "starts", "goal"} & set(data))
+        if extra:
+            raise SceneError(f"scene: {extra} are derived from the feeder design; remove them")
+        try:
+            return build_feeder(_design(data["feeder"]), part, inputs, friction, gravity, name)  # type: ignore[arg-type]
+        except DegenerateDesign as exc:
+            raise SceneError(f"feeder: degenerate design: {exc}") from None
+    for key in ("bounds", "starts", "goal"):
+        if key not in data:
+            raise SceneError(f"scene: '{key}' is required for a free-form scene")
+    bounds = _numbers(data["bounds"], "bounds", 4)
+    if bounds[0] >= bounds[1] or bounds[2] >= bounds[3]:
+        raise SceneError("bounds must be [x_min, x_max, y_min, y_max] with min < max")
+    starts_spec = data["starts"]
+    if not isinstance(starts_spec, dict) or not starts_spec:
+        raise SceneError("starts: expected a mapping name: [x, y, yaw]")
+    starts = {str(k): tuple(_numbers(v, f"starts.{k}", 3)) for k, v in starts_spec.items()}
+    return Scene(
+        name=name,
+        obstacles=_obstacles(data["obstacles"]),
+        part=part,
+        bounds=tuple(bounds),  # type: ignore[arg-type]
+        starts=starts,  # type: ignore[arg-type]
+        goal=_goal(data["goal"]),
+        gravity=gravity,  # type: ignore[arg-type]
+        friction=friction,
+        inputs=inputs,
+    )
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read a scene file; any problem is a :class:`SceneError` naming the file and field."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise SceneError(f"cannot read scene file '{path}': {exc.strerror}") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        raise SceneError(f"'{path}' is not valid YAML: {exc}") from None
+    try:
+        return scene_from_dict(data, name=path.stem)
+    except SceneError as exc:
+        raise SceneError(f"{path}: {exc}") from None

@@ -1,0 +1,193 @@
+"""Plan a part's motion through a scene with one level and one OMPL control planner.
+
+Everything returned is plain data (numpy arrays and numbers): OMPL objects stay inside
+:func:`plan`, so results can be pickled, stored and drawn.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from ompl import base as ob
+from ompl import control as oc
+from ompl import util as ou
+
+from feeders.scene import Scene
+from planners.adapters import state_propagator, validity_checker
+from planners.goals import GoalBox
+from planners.projections import register_position_projection
+from planners.registry import make_planner
+from planners.spaces import make_control_space, make_state_space, state_codec
+from validity import make_level
+
+
+@dataclass(frozen=True)
+class PlannerSettings:
+    """How OMPL drives a level: one propagation step, and how many steps a control lasts.
+
+    ``step`` (s) is OMPL's propagation step; each step the level integrates at its own finer
+    ``h``. A control is held for ``min_steps``..``max_steps`` propagation steps.
+    """
+
+    step: float = 0.05
+    min_steps: int = 1
+    max_steps: int = 20
+
+    def __post_init__(self) -> None:
+        if not (0.0 < self.step <= 10.0):
+            raise ValueError(f"planner step = {self.step!r} is outside the allowed range (0, 10]")
+        if not (1 <= self.min_steps <= self.max_steps):
+            raise ValueError("planner steps: need 1 <= min_steps <= max_steps")
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """One planning run. States are rows of the level's state (pose first: x, y, yaw)."""
+
+    scene: str
+    level: str
+    planner: str
+    orientation: str
+    seed: int
+    solved: bool
+    time: float
+    tree_size: int
+    goal_distance: float
+    path: np.ndarray = field(repr=False)
+    controls: np.ndarray = field(repr=False)
+    durations: np.ndarray = field(repr=False)
+    fine_path: np.ndarray = field(repr=False)
+    tree_vertices: np.ndarray = field(repr=False)
+    tree_edges: np.ndarray = field(repr=False)
+
+    @property
+    def path_length(self) -> float:
+        """Length travelled by the centre of mass along the fine path (length units)."""
+        if len(self.fine_path) < 2:
+            return 0.0
+        return float(np.sum(np.hypot(*np.diff(self.fine_path[:, :2], axis=0).T)))
+
+    @property
+    def path_duration(self) -> float:
+        return float(np.sum(self.durations))
+
+    def summary(self) -> dict:
+        return {
+            "scene": self.scene,
+            "level": self.level,
+            "planner": self.planner,
+            "orientation": self.orientation,
+            "seed": self.seed,
+            "solved": self.solved,
+            "time_s": round(self.time, 6),
+            "tree_size": self.tree_size,
+            "path_states": len(self.path),
+            "path_length": round(self.path_length, 6),
+            "path_duration_s": round(self.path_duration, 6),
+            "goal_distance": round(self.goal_distance, 6),
+        }
+
+
+def fine_path(level, path: np.ndarray, controls: np.ndarray, durations: np.ndarray,
+              step: float) -> np.ndarray:  # noqa: ANN001
+    """Re-propagate a control path in pieces of at most ``step`` seconds: the states between."""
+    if len(path) == 0:
+        return np.zeros((0, level.state_dim))
+    states = [tuple(path[0])]
+    for i in range(len(controls)):
+        state = tuple(path[i])
+        n = max(1, math.ceil(durations[i] / step - 1e-9))
+        for _ in range(n):
+            state = level.propagate(state, controls[i], durations[i] / n)
+            states.append(tuple(state))
+    return np.array(states)
+
+
+def plan(
+    scene: Scene,
+    level_name: str = "geometric",
+    planner_name: str = "rrt",
+    orientation: str = "heavy_leading",
+    time_limit: float = 5.0,
+    seed: int = 1,
+    settings: PlannerSettings | None = None,
+    level_options: dict | None = None,
+) -> PlanResult:
+    """Plan from the scene's start ``orientation`` into its goal region.
+
+    ``seed`` seeds OMPL's generator (process-wide; OMPL 2 restarts it on every seeding) and the
+    goal sampler, so the same seed gives the same tree and path.
+    """
+    settings = settings or PlannerSettings()
+    start_pose = scene.start(orientation)
+    level = make_level(level_name, scene, **(level_options or {}))
+    previous = ou.getLogLevel()
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)  # "seed changed after start" is expected here
+    ou.RNG.setSeed(int(seed))
+    ou.setLogLevel(previous)
+
+    space = make_state_space(scene, level.state_dim)
+    low, high = level.control_bounds()
+    cspace = make_control_space(space, low, high)
+    ss = oc.SimpleSetup(cspace)
+    ss.setStateValidityChecker(validity_checker(level))
+    ss.setStatePropagator(state_propagator(level))
+    si = ss.getSpaceInformation()
+    si.setPropagationStepSize(settings.step)
+    si.setMinMaxControlDuration(settings.min_steps, settings.max_steps)
+    register_position_projection(space, level.state_dim)
+
+    read, write = state_codec(level.state_dim)
+    start = space.allocState()
+    write(start, level.state_of_pose(start_pose))
+    ss.setStartState(start)
+    goal = GoalBox(si, scene.goal, level.state_dim, np.random.default_rng(seed))
+    ss.setGoal(goal)
+    ss.setPlanner(make_planner(planner_name, si))
+    ss.setup()
+
+    t0 = time.perf_counter()
+    ss.solve(float(time_limit))
+    elapsed = time.perf_counter() - t0
+    solved = bool(ss.haveExactSolutionPath())
+
+    path = np.zeros((0, level.state_dim))
+    controls = np.zeros((0, level.control_dim))
+    durations = np.zeros(0)
+    goal_distance = math.inf
+    if ss.haveSolutionPath():
+        p = ss.getSolutionPath()
+        path = np.array([read(p.getState(i)) for i in range(p.getStateCount())])
+        controls = np.array(
+            [[p.getControl(i)[k] for k in range(level.control_dim)] for i in range(p.getControlCount())]
+        ).reshape(-1, level.control_dim)
+        durations = np.array([p.getControlDuration(i) for i in range(p.getControlCount())])
+        goal_distance = goal.distanceGoal(p.getState(p.getStateCount() - 1))
+
+    pd = ob.PlannerData(si)
+    ss.getPlannerData(pd)
+    nv = pd.numVertices()
+    vertices = np.array([read(pd.getVertex(i).getState()) for i in range(nv)]).reshape(
+        -1, level.state_dim
+    )
+    edges = [(i, j) for i in range(nv) for j in pd.getEdges(i)]
+    return PlanResult(
+        scene=scene.name,
+        level=level_name,
+        planner=planner_name,
+        orientation=orientation,
+        seed=int(seed),
+        solved=solved,
+        time=elapsed,
+        tree_size=nv,
+        goal_distance=float(goal_distance),
+        path=path,
+        controls=controls,
+        durations=durations,
+        fine_path=fine_path(level, path, controls, durations, level.step),
+        tree_vertices=vertices,
+        tree_edges=np.array(edges, dtype=np.int64).reshape(-1, 2),
+    )

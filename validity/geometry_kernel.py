@@ -1,0 +1,223 @@
+"""Signed distance between the part (a convex polygon) and static convex polygons and discs.
+
+The one geometry kernel of every level: the geometric level asks for its sign (Eq. 9's
+psi_n(q) >= 0), the contact levels for the nearby features. Arrays in, numbers out; compiled
+with numba. Polygons are counter-clockwise, packed as ``verts (P, K, 2)`` with ``counts (P,)``
+(padding repeats the last vertex: a zero-length edge, skipped); discs as ``circles (C, 3)``.
+
+Signed distance: the Euclidean distance between the shapes when they are apart, minus the
+penetration depth (the smallest translation that separates them) when they overlap. For convex
+polygons the separating-axis test over edge normals gives the penetration depth exactly.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+_EDGE_EPS = 1e-14
+
+
+@njit(cache=True)
+def pose_vertices(body: np.ndarray, x: float, y: float, yaw: float, out: np.ndarray) -> None:
+    """Write the world corners of a body polygon (body frame ``(n, 2)``) at pose into ``out``."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    for i in range(body.shape[0]):
+        bx, by = body[i, 0], body[i, 1]
+        out[i, 0] = x + c * bx - s * by
+        out[i, 1] = y + s * bx + c * by
+
+
+@njit(cache=True)
+def point_segment_distance(
+    px: float, py: float, ax: float, ay: float, bx: float, by: float
+) -> float:
+    """Distance from point p to segment ab."""
+    ex, ey = bx - ax, by - ay
+    ll = ex * ex + ey * ey
+    t = 0.0
+    if ll > _EDGE_EPS:
+        t = ((px - ax) * ex + (py - ay) * ey) / ll
+        t = min(1.0, max(0.0, t))
+    dx, dy = px - (ax + t * ex), py - (ay + t * ey)
+    return math.sqrt(dx * dx + dy * dy)
+
+
+@njit(cache=True)
+def _max_separation(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
+    """Largest separation of b from a's edge lines (outward normals of CCW a)."""
+    best = -np.inf
+    for i in range(na):
+        j = (i + 1) % na
+        ex, ey = a[j, 0] - a[i, 0], a[j, 1] - a[i, 1]
+        ll = math.sqrt(ex * ex + ey * ey)
+        if ll <= _EDGE_EPS:
+            continue
+        nx, ny = ey / ll, -ex / ll
+        lowest = np.inf
+        for k in range(nb):
+            d = nx * (b[k, 0] - a[i, 0]) + ny * (b[k, 1] - a[i, 1])
+            lowest = min(lowest, d)
+        best = max(best, lowest)
+    return best
+
+
+@njit(cache=True)
+def _vertex_edge_distance(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
+    """Smallest distance from a vertex of a to an edge of b."""
+    best = np.inf
+    for k in range(na):
+        for i in range(nb):
+            j = (i + 1) % nb
+            d = point_segment_distance(a[k, 0], a[k, 1], b[i, 0], b[i, 1], b[j, 0], b[j, 1])
+            best = min(best, d)
+    return best
+
+
+@njit(cache=True)
+def convex_signed_distance(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
+    """Signed distance between convex CCW polygons a[:na] and b[:nb]."""
+    sep = max(_max_separation(a, na, b, nb), _max_separation(b, nb, a, na))
+    if sep <= 0.0:
+        return sep
+    return min(_vertex_edge_distance(a, na, b, nb), _vertex_edge_distance(b, nb, a, na))
+
+
+@njit(cache=True)
+def circle_signed_distance(cx: float, cy: float, r: float, b: np.ndarray, nb: int) -> float:
+    """Signed distance between the disc (c, r) and the convex CCW polygon b[:nb]."""
+    inside = -np.inf
+    for i in range(nb):
+        j = (i + 1) % nb
+        ex, ey = b[j, 0] - b[i, 0], b[j, 1] - b[i, 1]
+        ll = math.sqrt(ex * ex + ey * ey)
+        if ll <= _EDGE_EPS:
+            continue
+        inside = max(inside, (ey * (cx - b[i, 0]) - ex * (cy - b[i, 1])) / ll)
+    if inside <= 0.0:
+        return inside - r
+    best = np.inf
+    for i in range(nb):
+        j = (i + 1) % nb
+        best = min(best, point_segment_distance(cx, cy, b[i, 0], b[i, 1], b[j, 0], b[j, 1]))
+    return best - r
+
+
+@njit(cache=True)
+def polygon_aabbs(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Axis-aligned boxes ``(P, 4)`` = (xmin, ymin, xmax, ymax) of packed polygons."""
+    out = np.empty((verts.shape[0], 4))
+    for p in range(verts.shape[0]):
+        out[p, 0], out[p, 1] = np.inf, np.inf
+        out[p, 2], out[p, 3] = -np.inf, -np.inf
+        for k in range(counts[p]):
+            out[p, 0] = min(out[p, 0], verts[p, k, 0])
+            out[p, 1] = min(out[p, 1], verts[p, k, 1])
+            out[p, 2] = max(out[p, 2], verts[p, k, 0])
+            out[p, 3] = max(out[p, 3], verts[p, k, 1])
+    return out
+
+
+@njit(cache=True)
+def _box_gap(a0: float, a1: float, a2: float, a3: float, b: np.ndarray) -> float:
+    """Distance between two axis-aligned boxes (0 when they overlap)."""
+    dx = max(b[0] - a2, 0.0, a0 - b[2])
+    dy = max(b[1] - a3, 0.0, a1 - b[3])
+    return math.sqrt(dx * dx + dy * dy)
+
+
+@njit(cache=True)
+def clearance_at(
+    world: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    stop_below: float,
+) -> float:
+    """Smallest signed distance from the placed part ``world (n, 2)`` to every obstacle.
+
+    Broad phase: an obstacle whose bounding box is farther than the best distance so far is
+    skipped. Returns as soon as a distance below ``stop_below`` is found (use ``-inf`` for the
+    exact minimum, ``0`` for a yes/no penetration test).
+    """
+    n = world.shape[0]
+    x0, y0 = world[0, 0], world[0, 1]
+    x1, y1 = x0, y0
+    for i in range(1, n):
+        x0, y0 = min(x0, world[i, 0]), min(y0, world[i, 1])
+        x1, y1 = max(x1, world[i, 0]), max(y1, world[i, 1])
+    best = np.inf
+    for p in range(verts.shape[0]):
+        if _box_gap(x0, y0, x1, y1, aabbs[p]) >= best:
+            continue
+        d = convex_signed_distance(world, n, verts[p], counts[p])
+        if d < best:
+            best = d
+            if best < stop_below:
+                return best
+    for q in range(circles.shape[0]):
+        cx, cy, r = circles[q, 0], circles[q, 1], circles[q, 2]
+        gx = max(x0 - cx, 0.0, cx - x1)
+        gy = max(y0 - cy, 0.0, cy - y1)
+        if math.sqrt(gx * gx + gy * gy) - r >= best:
+            continue
+        d = circle_signed_distance(cx, cy, r, world, n)
+        if d < best:
+            best = d
+            if best < stop_below:
+                return best
+    return best
+
+
+@njit(cache=True)
+def clearance_at_pose(
+    body: np.ndarray,
+    x: float,
+    y: float,
+    yaw: float,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    stop_below: float,
+) -> float:
+    """:func:`clearance_at` for the body polygon placed at ``(x, y, yaw)``."""
+    world = np.empty_like(body)
+    pose_vertices(body, x, y, yaw, world)
+    return clearance_at(world, verts, counts, aabbs, circles, stop_below)
+
+
+@njit(cache=True)
+def penetrates(
+    world: np.ndarray, verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, circles: np.ndarray
+) -> bool:
+    """True when the placed part overlaps an obstacle by more than touching (psi_n < 0).
+
+    The sign of :func:`clearance_at` without its distances: boxes that do not overlap are
+    skipped, and a separating axis ends the test for a polygon.
+    """
+    n = world.shape[0]
+    x0, y0 = world[0, 0], world[0, 1]
+    x1, y1 = x0, y0
+    for i in range(1, n):
+        x0, y0 = min(x0, world[i, 0]), min(y0, world[i, 1])
+        x1, y1 = max(x1, world[i, 0]), max(y1, world[i, 1])
+    for p in range(verts.shape[0]):
+        b = aabbs[p]
+        if b[0] > x1 or b[2] < x0 or b[1] > y1 or b[3] < y0:
+            continue
+        if _max_separation(world, n, verts[p], counts[p]) >= 0.0:
+            continue
+        if _max_separation(verts[p], counts[p], world, n) >= 0.0:
+            continue
+        return True
+    for q in range(circles.shape[0]):
+        cx, cy, r = circles[q, 0], circles[q, 1], circles[q, 2]
+        if cx + r < x0 or cx - r > x1 or cy + r < y0 or cy - r > y1:
+            continue
+        if circle_signed_distance(cx, cy, r, world, n) < 0.0:
+            return True
+    return False

@@ -1,0 +1,39 @@
+"""A scene as the flat arrays the kernels take (shapes and units checked once, here)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from feeders.scene import Scene
+from validity.geometry_kernel import polygon_aabbs
+
+
+@dataclass(frozen=True)
+class SceneArrays:
+    """``body (4, 2)`` part corners in the body frame (centre of mass at the origin);
+    ``verts (P, K, 2)``, ``counts (P,)``, ``aabbs (P, 4)`` static convex polygons;
+    ``circles (C, 3)`` static discs; ``bounds (4,)`` = x_min, x_max, y_min, y_max of the
+    centre of mass."""
+
+    body: np.ndarray
+    verts: np.ndarray
+    counts: np.ndarray
+    aabbs: np.ndarray
+    circles: np.ndarray
+    bounds: np.ndarray
+
+    @classmethod
+    def from_scene(cls, scene: Scene) -> SceneArrays:
+        verts, counts, circles = scene.obstacles.packed()
+        if verts.shape[0] == 0:  # numba needs a typed, non-ragged array even when empty
+            verts = np.zeros((0, 3, 2))
+        return cls(
+            body=np.ascontiguousarray(scene.part.body_vertices(), dtype=np.float64),
+            verts=np.ascontiguousarray(verts, dtype=np.float64),
+            counts=np.ascontiguousarray(counts, dtype=np.int64),
+            aabbs=polygon_aabbs(np.ascontiguousarray(verts), counts),
+            circles=np.ascontiguousarray(circles, dtype=np.float64).reshape(-1, 3),
+            bounds=np.asarray(scene.bounds, dtype=np.float64),
+        )
