@@ -1,0 +1,190 @@
+"""The ``partfeeder`` command line.
+
+``partfeeder plan``: plan the part through a feeder (a paper preset, 12 values, or a YAML
+scene) with one level and one OMPL planner, for one or both entry orientations; prints a
+summary (or JSON) and writes a picture of the tree and path. ``partfeeder draw``: pictures of
+designs. ``partfeeder bench``: speed of the validity check, propagation and planning.
+
+Exit status: 0 done (whether or not a plan was found: see the output), 2 bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from experiments.console import exit_now, set_ompl_logging
+
+ORIENTATIONS = ("heavy_leading", "heavy_trailing")
+
+
+class UsageError(Exception):
+    """Bad input from the user: printed as one line, exit status 2."""
+
+
+def _parser() -> argparse.ArgumentParser:
+    from feeders.design import PRESETS
+    from planners.registry import PLANNERS
+    from validity import LEVELS
+
+    parser = argparse.ArgumentParser(
+        prog="partfeeder",
+        description="Design part feeders by motion planning with physics (geometric, "
+        "kinematic and dynamic levels on OMPL).",
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    def scene_args(p: argparse.ArgumentParser) -> None:
+        group = p.add_mutually_exclusive_group()
+        group.add_argument(
+            "--design",
+            default=None,
+            help=f"a paper preset ({', '.join(sorted(PRESETS))}) or the 12 values "
+            "a,b,c,d,e,fx,fy,gx,gy,r,theta,alpha separated by commas (default: table3)",
+        )
+        group.add_argument("--scene", type=Path, help="a scene YAML file")
+
+    plan = sub.add_parser("plan", help="plan the part through a scene with OMPL")
+    scene_args(plan)
+    plan.add_argument("--level", default="geometric", choices=sorted(LEVELS))
+    plan.add_argument("--planner", default="rrt", choices=sorted(PLANNERS))
+    plan.add_argument("--orientation", default="both",
+                      help="both, or one start of the scene (feeder: heavy_leading, heavy_trailing)")
+    plan.add_argument("--time", type=float, default=5.0, help="planning time per run (s)")
+    plan.add_argument("--seed", type=int, default=1)
+    plan.add_argument("--out", type=Path, default=None, help="directory for the picture")
+    plan.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    plan.add_argument("--verbose", action="store_true", help="show OMPL's log")
+
+    draw = sub.add_parser("draw", help="draw designs (feeder, start poses, goal region)")
+    scene_args(draw)
+    draw.add_argument("--out", type=Path, required=True, help="PNG file to write")
+
+    bench = sub.add_parser("bench", help="measure the speed of checks, propagation, planning")
+    bench.add_argument("--quick", action="store_true", help="fewer repeats and seeds")
+    bench.add_argument("--repeats", type=int, default=5)
+    bench.add_argument("--seed", type=int, default=1)
+    bench.add_argument("--json", action="store_true")
+    return parser
+
+
+def _load_scene(design: str | None, scene_file: Path | None):  # noqa: ANN202
+    from feeders.design import DesignError, DesignParameters, preset
+    from feeders.feeder import DegenerateDesign, build_feeder
+    from feeders.scene_yaml import SceneError, load_scene
+
+    try:
+        if scene_file is not None:
+            return load_scene(scene_file)
+        spec = design or "table3"
+        if "," in spec:
+            try:
+                values = [float(v) for v in spec.split(",")]
+            except ValueError:
+                raise UsageError(f"--design: '{spec}' is not 12 comma-separated numbers") from None
+            return build_feeder(DesignParameters.from_vector(values), name="custom design")
+        return build_feeder(preset(spec), name=spec)
+    except (DesignError, SceneError) as exc:
+        raise UsageError(str(exc)) from None
+    except DegenerateDesign as exc:
+        raise UsageError(f"degenerate design: {exc}") from None
+
+
+def _cmd_plan(args: argparse.Namespace) -> int:
+    from experiments.plotting import plan_figure
+    from planners.plan import plan
+
+    if not (0.0 < args.time <= 3600.0):
+        raise UsageError(f"--time = {args.time} is outside the allowed range (0, 3600] s")
+    scene = _load_scene(args.design, args.scene)
+    if args.orientation == "both":
+        orientations = [o for o in ORIENTATIONS if o in scene.starts] or list(scene.starts)
+    elif args.orientation in scene.starts:
+        orientations = [args.orientation]
+    else:
+        raise UsageError(
+            f"--orientation '{args.orientation}' is not a start of this scene; "
+            f"choose both or one of: {', '.join(scene.starts)}"
+        )
+    out = args.out
+    if out is not None:
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UsageError(f"--out: cannot create directory '{out}': {exc.strerror}") from None
+    results = [
+        plan(scene, args.level, args.planner, o, args.time, args.seed) for o in orientations
+    ]
+    figure = None
+    if out is not None:
+        stem = f"plan_{scene.name}_{args.level}_{args.planner}".replace(" ", "_")
+        figure = str(plan_figure(scene, results, out / f"{stem}.png"))
+        (out / f"{stem}.json").write_text(json.dumps([r.summary() for r in results], indent=2))
+    if args.json:
+        print(json.dumps({"runs": [r.summary() for r in results], "figure": figure}, indent=2))
+        return 0
+    print(f"{scene.name} | level {args.level} | planner {args.planner} | seed {args.seed} | "
+          f"budget {args.time:g} s")
+    print(f"{'orientation':<16}{'solved':>7}{'time (s)':>10}{'tree':>8}{'path length':>13}")
+    for r in results:
+        print(f"{r.orientation:<16}{'yes' if r.solved else 'no':>7}{r.time:>10.3f}"
+              f"{r.tree_size:>8}{r.path_length:>13.2f}")
+    if figure:
+        print(f"picture: {figure}")
+    return 0
+
+
+def _cmd_draw(args: argparse.Namespace) -> int:
+    from experiments.plotting import scene_figure
+
+    scene = _load_scene(args.design, args.scene)
+    try:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"--out: cannot create '{args.out.parent}': {exc.strerror}") from None
+    print(scene_figure([scene], [scene.name], args.out))
+    return 0
+
+
+def _cmd_bench(args: argparse.Namespace) -> int:
+    from experiments.bench import format_report, run_benchmarks
+
+    if args.repeats < 1:
+        raise UsageError(f"--repeats = {args.repeats} must be >= 1")
+    results = run_benchmarks(repeats=args.repeats, seed=args.seed, quick=args.quick)
+    print(json.dumps(results, indent=2) if args.json else format_report(results))
+    return 0
+
+
+COMMANDS = {"plan": _cmd_plan, "draw": _cmd_draw, "bench": _cmd_bench}
+
+
+def run(argv: Sequence[str] | None = None) -> int:
+    """Run a command; returns the exit status (for tests; ``main`` also exits)."""
+    args = _parser().parse_args(argv)
+    set_ompl_logging(getattr(args, "verbose", False))
+    try:
+        return COMMANDS[args.command](args)
+    except UsageError as exc:
+        print(f"partfeeder {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    try:
+        code = run(argv)
+    except SystemExit as exc:  # argparse: --help, usage errors
+        code = exc.code if isinstance(exc.code, int) else 2
+    except BrokenPipeError:  # e.g. piped into `head`
+        code = 0
+    except KeyboardInterrupt:
+        print("partfeeder: interrupted", file=sys.stderr)
+        code = 130
+    exit_now(code)
+
+
+if __name__ == "__main__":
+    main()

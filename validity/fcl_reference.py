@@ -1,0 +1,184 @@
+"""A second, independent yes/no penetration test built on FCL (python-fcl), for cross-checks.
+
+The geometry kernel (:mod:`validity.geometry_kernel`) is this project's own code; FCL, the
+Flexible Collision Library, is the field's standard collision checker. Answering the same
+question with it, from the scene's shapes rather than the kernel's packed arrays, tests the
+kernel against an implementation that shares none of its code.
+
+The plane is embedded in 3-D: every obstacle is a prism over ``z in [-OBSTACLE_HALF_HEIGHT,
++OBSTACLE_HALF_HEIGHT]`` (convex polygons as ``fcl.Convex``, discs as ``fcl.Cylinder`` with
+their axis along z) and the part is an ``fcl.Box`` of height ``2 * PART_HALF_HEIGHT`` centred
+on ``z = 0``. The part's slab lies strictly inside the obstacles' slab, so the 3-D shapes
+intersect exactly when their 2-D cross-sections do and no two z faces ever coincide (which
+would be a degenerate face-on-face contact for GJK). Broad phase: an FCL
+``DynamicAABBTreeCollisionManager`` holding the obstacles; narrow phase: GJK/EPA (libccd).
+
+Semantics, unlike the kernel's: FCL's GJK decides with a small tolerance. Shapes that touch,
+or are apart or overlapping by less than about 1e-6 (lengths in the part's units), may be
+reported either way; in particular exact touching may count as a collision, whereas the
+kernel counts touching as valid (``psi_n >= 0``). Compare the two only outside a band of
+signed distance around zero; ``FCL_TOLERANCE_BAND`` is the band the tests use.
+
+Also here: :func:`cross_check_poses`, the seeded pose sampler the cross-checks and benchmarks
+share, so both outcomes (clear and penetrating) are well represented.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import fcl
+import numpy as np
+
+from feeders.scene import Scene
+
+OBSTACLE_HALF_HEIGHT = 1.0  # z half-extent of every obstacle prism (length units)
+PART_HALF_HEIGHT = 0.5  # z half-extent of the part's box: strictly inside the obstacles' slab
+FCL_TOLERANCE_BAND = 1e-5  # |signed distance| below which FCL and the kernel may disagree
+
+
+def _prism(polygon: np.ndarray, half_height: float) -> fcl.Convex:
+    """A convex CCW polygon ``(n, 2)`` extruded to ``z in [-half_height, half_height]``.
+
+    Faces in FCL's flat format ``[k, i_0, ..., i_{k-1}, k, ...]``, each counter-clockwise seen
+    from outside: the bottom cap reversed, the top cap as given, one quad per side.
+    """
+    n = len(polygon)
+    bottom = np.column_stack([polygon, np.full(n, -half_height)])
+    top = np.column_stack([polygon, np.full(n, half_height)])
+    vertices = np.vstack([bottom, top]).astype(np.float64)
+    faces: list[int] = [n, *range(n - 1, -1, -1), n, *range(n, 2 * n)]
+    for i in range(n):
+        j = (i + 1) % n
+        faces += [4, i, j, n + j, n + i]
+    return fcl.Convex(vertices, n + 2, faces)
+
+
+def _stop_at_first_collision(o1: fcl.CollisionObject, o2: fcl.CollisionObject, cdata) -> bool:  # noqa: ANN001
+    """Broad-phase callback: run the narrow phase on one candidate pair, stop at a hit."""
+    if cdata.done:
+        return True
+    fcl.collide(o1, o2, cdata.request, cdata.result)
+    cdata.done = bool(cdata.result.is_collision)
+    return cdata.done
+
+
+class FclScene:
+    """The scene's obstacles in an FCL broad phase and the part as a box: ``penetrates(pose)``.
+
+    Only penetration is tested (the scene's bounds on the centre of mass are not): the same
+    question as :func:`validity.geometry_kernel.penetrates`, up to the tolerance described in
+    the module docstring.
+    """
+
+    def __init__(self, scene: Scene) -> None:
+        self.scene = scene
+        body = np.asarray(scene.part.body_vertices(), dtype=np.float64)
+        # The box is centred on the part's geometric centre, which sits at this offset from
+        # the centre of mass (the pose's origin) in the body frame.
+        self._centre = body.mean(axis=0)
+        extent = body.max(axis=0) - body.min(axis=0)
+        self._part = fcl.CollisionObject(
+            fcl.Box(float(extent[0]), float(extent[1]), 2.0 * PART_HALF_HEIGHT)
+        )
+        self._obstacles: list[fcl.CollisionObject] = []
+        for polygon in scene.obstacles.polygons:
+            geometry = _prism(np.asarray(polygon, dtype=np.float64), OBSTACLE_HALF_HEIGHT)
+            self._obstacles.append(fcl.CollisionObject(geometry, fcl.Transform()))
+        for cx, cy, r in scene.obstacles.circles:
+            cylinder = fcl.Cylinder(float(r), 2.0 * OBSTACLE_HALF_HEIGHT)
+            where = fcl.Transform(np.array([float(cx), float(cy), 0.0]))
+            self._obstacles.append(fcl.CollisionObject(cylinder, where))
+        self._manager = fcl.DynamicAABBTreeCollisionManager()
+        self._manager.registerObjects(self._obstacles)
+        self._manager.setup()
+
+    def _place(self, pose: Sequence[float]) -> None:
+        x, y, yaw = float(pose[0]), float(pose[1]), float(pose[2])
+        c, s = math.cos(yaw), math.sin(yaw)
+        cx, cy = self._centre
+        rotation = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        translation = np.array([x + c * cx - s * cy, y + s * cx + c * cy, 0.0])
+        self._part.setTransform(fcl.Transform(rotation, translation))
+
+    def penetrates(self, pose: Sequence[float]) -> bool:
+        """True when FCL finds the part at ``pose = (x, y, yaw)`` (centre of mass, radians)
+        in collision with an obstacle; touching may count as collision (see the module)."""
+        self._place(pose)
+        cdata = fcl.CollisionData(fcl.CollisionRequest(), fcl.CollisionResult())
+        self._manager.collide(self._part, cdata, _stop_at_first_collision)
+        return bool(cdata.result.is_collision)
+
+
+def _contact_pose(
+    anchor: np.ndarray, normal: np.ndarray, body: np.ndarray, rng: np.random.Generator
+) -> tuple[float, float, float]:
+    """A pose of the part close to the obstacle boundary at ``anchor`` (outward unit ``normal``).
+
+    A random edge of the part faces the obstacle's edge (tilted by a small random angle half
+    the time), a random point of it at the anchor; then the part moves along the normal until
+    its lowest corner is a signed gap away from the obstacle edge's line, the gap's size
+    log-uniform in [1e-8, 1e-1] and its sign random.
+    """
+    edge = int(rng.integers(0, len(body)))
+    a, b = body[edge], body[(edge + 1) % len(body)]
+    e = b - a
+    m = np.array([e[1], -e[0]]) / math.hypot(e[0], e[1])  # the part edge's outward normal
+    yaw = math.atan2(-normal[1], -normal[0]) - math.atan2(m[1], m[0])  # m turned onto -normal
+    if rng.uniform() < 0.5:
+        yaw += rng.normal(0.0, 0.05)
+    yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
+    c, s = math.cos(yaw), math.sin(yaw)
+    rotation = np.array([[c, -s], [s, c]])
+    p = a + rng.uniform(0.0, 1.0) * e  # the part point put on the anchor
+    com = anchor - rotation @ p
+    lowest = float(np.min((body @ rotation.T + com - anchor) @ normal))
+    gap = rng.choice((-1.0, 1.0)) * 10.0 ** rng.uniform(-8.0, -1.0)
+    com = com + (gap - lowest) * normal
+    return float(com[0]), float(com[1]), yaw
+
+
+def cross_check_poses(
+    scene: Scene, n: int, rng: np.random.Generator | int, near_fraction: float = 0.5
+) -> np.ndarray:
+    """``n`` seeded poses ``(x, y, yaw)`` (shape ``(n, 3)``) for cross-checking collision tests.
+
+    ``1 - near_fraction`` of them uniform: centre of mass over ``scene.bounds``, yaw in
+    ``[-pi, pi)``. The rest are contact poses (see :func:`_contact_pose`) at a point uniform
+    on the boundary of a random obstacle, so touching, grazing (gaps down to 1e-8) and shallow
+    penetration are common; their centre of mass may lie outside the bounds. Pass a seed or
+    a Generator.
+    """
+    if n < 0 or not 0.0 <= near_fraction <= 1.0:
+        raise ValueError(f"need n >= 0 (got {n}) and near_fraction in [0, 1] (got {near_fraction})")
+    rng = np.random.default_rng(rng)
+    x0, x1, y0, y1 = scene.bounds
+    n_near = round(n * near_fraction)
+    n_uniform = n - n_near
+    poses = np.empty((n, 3))
+    poses[:n_uniform, 0] = rng.uniform(x0, x1, n_uniform)
+    poses[:n_uniform, 1] = rng.uniform(y0, y1, n_uniform)
+    poses[:n_uniform, 2] = rng.uniform(-math.pi, math.pi, n_uniform)
+    polygons = [np.asarray(p, dtype=np.float64) for p in scene.obstacles.polygons]
+    circles = scene.obstacles.circles
+    n_shapes = len(polygons) + len(circles)
+    if n_near and n_shapes == 0:
+        raise ValueError("cannot sample poses near obstacles: the scene has none")
+    body = np.asarray(scene.part.body_vertices(), dtype=np.float64)
+    for k in range(n_uniform, n):
+        i = int(rng.integers(0, n_shapes))
+        if i < len(polygons):
+            p = polygons[i]
+            e = np.roll(p, -1, axis=0) - p
+            lengths = np.hypot(e[:, 0], e[:, 1])
+            edge = int(rng.choice(len(p), p=lengths / lengths.sum()))  # uniform on the boundary
+            anchor = p[edge] + rng.uniform(0.0, 1.0) * e[edge]
+            normal = np.array([e[edge, 1], -e[edge, 0]]) / lengths[edge]
+        else:
+            cx, cy, r = circles[i - len(polygons)]
+            angle = rng.uniform(-math.pi, math.pi)
+            normal = np.array([math.cos(angle), math.sin(angle)])
+            anchor = np.array([cx, cy]) + r * normal
+        poses[k] = _contact_pose(anchor, normal, body, rng)
+    return poses
