@@ -1,0 +1,110 @@
+"""The ``partfeeder`` command as a user meets it: summaries, JSON, pictures, clear errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from experiments.cli import run
+
+ROOT = Path(__file__).resolve().parents[2]
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def _cli(*args: str) -> subprocess.CompletedProcess:
+    """The real entry point in a fresh process (so exit-time output is seen too)."""
+    return subprocess.run(
+        [sys.executable, "-c", "from experiments.cli import main; main()", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+
+
+def test_plan_both_orientations_prints_summary_and_writes_picture(tmp_path):
+    """A normal run: a table on stdout, nothing on stderr (no OMPL log, no nanobind leak lines)."""
+    out = tmp_path / "out"
+    proc = _cli("plan", "--design", "table3", "--level", "geometric", "--planner", "rrt",
+                "--orientation", "both", "--time", "5", "--seed", "1", "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    lines = proc.stdout.splitlines()
+    assert any(line.startswith("heavy_leading") and " yes " in line for line in lines)
+    assert any(line.startswith("heavy_trailing") and " yes " in line for line in lines)
+    picture = out / "plan_table3_geometric_rrt.png"
+    assert picture.read_bytes()[:8] == PNG_MAGIC
+    assert "leaked" not in proc.stdout + proc.stderr and "Info:" not in proc.stdout
+
+
+def test_verbose_shows_ompl_log():
+    proc = _cli("plan", "--design", "table3", "--orientation", "heavy_trailing", "--time", "5",
+                "--verbose")
+    assert proc.returncode == 0
+    assert "RRT" in proc.stdout + proc.stderr
+
+
+def test_json_output_is_machine_readable(capsys):
+    assert run(["plan", "--design", "table3", "--time", "5", "--seed", "2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [r["orientation"] for r in data["runs"]] == ["heavy_leading", "heavy_trailing"]
+    for r in data["runs"]:
+        assert r["solved"] is True and r["tree_size"] > 1 and r["path_length"] > 0
+        assert r["seed"] == 2 and r["level"] == "geometric" and r["planner"] == "rrt"
+
+
+def test_twelve_values_and_scene_file_are_accepted(tmp_path, capsys):
+    values = "1.1,1.1086,0.7979,3.0078,-1.9,-0.9849,1.0098,0.733,2.0388,0.101,0.4673,1.0472"
+    assert run(["plan", "--design", values, "--orientation", "heavy_trailing", "--json"]) == 0
+    by_values = json.loads(capsys.readouterr().out)["runs"][0]
+    scene = tmp_path / "t3.yaml"
+    scene.write_text("feeder:\n  preset: table3\n")
+    assert run(["plan", "--scene", str(scene), "--orientation", "heavy_trailing", "--json"]) == 0
+    by_file = json.loads(capsys.readouterr().out)["runs"][0]
+    # Same geometry and seed: the same plan.
+    assert by_values["tree_size"] == by_file["tree_size"]
+    assert by_values["path_length"] == by_file["path_length"]
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--design", "fig99"], "unknown design preset 'fig99'; presets: fig4"),
+        (["--design", "1,2,3"], "a design has 12 values"),
+        (["--design", "1.1,1.1,0.8,3,-1.5,-0.8,1,1,2,99,0.5,1"], "'r'"),
+        (["--scene", "/no/such/scene.yaml"], "cannot read scene file"),
+        (["--orientation", "sideways"], "--orientation 'sideways'"),
+        (["--time", "-1"], "--time = -1.0 is outside the allowed range"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(capsys, args, message):
+    assert run(["plan", *args]) == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_out_of_range_value_names_field_and_range(capsys):
+    assert run(["plan", "--design", "1.1,1.1,0.8,3,-1.5,-0.8,1,1,2,99,0.5,1"]) == 2
+    err = capsys.readouterr().err
+    assert "'r'" in err and "[0.01, 5]" in err
+
+
+def test_bad_yaml_is_one_line_error_in_a_real_process(tmp_path):
+    scene = tmp_path / "bad.yaml"
+    scene.write_text("feeder: {preset: table3}\nfriction: -2\n")
+    proc = _cli("plan", "--scene", str(scene))
+    assert proc.returncode == 2
+    assert proc.stdout == ""
+    assert "friction" in proc.stderr and "Traceback" not in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_draw_writes_a_picture(tmp_path, capsys):
+    target = tmp_path / "pics" / "fig7a.png"
+    assert run(["draw", "--design", "fig7a", "--out", str(target)]) == 0
+    assert target.read_bytes()[:8] == PNG_MAGIC
