@@ -63,6 +63,12 @@ def _parser() -> argparse.ArgumentParser:
     scene_args(draw)
     draw.add_argument("--out", type=Path, required=True, help="PNG file to write")
 
+    cal = sub.add_parser("calibrate", help="the geometric level's verdict on the paper's designs")
+    cal.add_argument("--runs", type=int, default=3, help="seeded RRT runs per orientation")
+    cal.add_argument("--time", type=float, default=10.0, help="budget per run (s)")
+    cal.add_argument("--out", type=Path, default=None,
+                     help="directory for pictures of table3 and of the box's corners")
+
     bench = sub.add_parser("bench", help="measure the speed of checks, propagation, planning")
     bench.add_argument("--quick", action="store_true", help="fewer repeats and seeds")
     bench.add_argument("--repeats", type=int, default=5)
@@ -149,6 +155,32 @@ def _cmd_draw(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_calibrate(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from experiments.atlas import corner_census, draw_atlas
+    from experiments.calibration import ORIENTATIONS as CAL_ORIENTATIONS
+    from experiments.calibration import calibrate, markdown_table
+    from feeders.design import PRESETS
+
+    if args.runs < 1:
+        raise UsageError(f"--runs = {args.runs} must be >= 1")
+    if not (0.0 < args.time <= 3600.0):
+        raise UsageError(f"--time = {args.time} is outside the allowed range (0, 3600] s")
+    with tqdm(total=len(PRESETS) * len(CAL_ORIENTATIONS), desc="calibrating", unit="run") as bar:
+        rows = calibrate(runs=args.runs, time_limit=args.time,
+                         progress=lambda name, _o: bar.set_postfix_str(name) or bar.update())
+    print(markdown_table(rows))
+    corners, built, reasons = corner_census()
+    print(f"\ncorners of the Table 2 box that build: {built} of {corners}")
+    for reason, count in reasons.most_common():
+        print(f"  rejected, {reason}: {count}")
+    if args.out is not None:
+        for path in draw_atlas(args.out):
+            print(f"picture: {path}")
+    return 0
+
+
 def _cmd_bench(args: argparse.Namespace) -> int:
     from experiments.bench import format_report, run_benchmarks
 
@@ -159,7 +191,12 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = {"plan": _cmd_plan, "draw": _cmd_draw, "bench": _cmd_bench}
+COMMANDS = {
+    "plan": _cmd_plan,
+    "draw": _cmd_draw,
+    "calibrate": _cmd_calibrate,
+    "bench": _cmd_bench,
+}
 
 
 def run(argv: Sequence[str] | None = None) -> int:

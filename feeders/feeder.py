@@ -131,6 +131,52 @@ def wall_quad(edge: Edge, thickness: float = WALL_THICKNESS) -> np.ndarray:
     return np.array([[x0, y0], [x0 + nx, y0 + ny], [x1 + nx, y1 + ny], [x1, y1]])
 
 
+def _outward_normal(edge: Edge) -> np.ndarray:
+    d = np.subtract(edge.end, edge.start)
+    return np.array([d[1], -d[0]]) / np.hypot(*d)
+
+
+def _clip(poly: np.ndarray, point: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """Sutherland-Hodgman: the part of convex ``poly`` where (x - point) . normal >= 0."""
+    out = []
+    side = (poly - point) @ normal
+    for i in range(len(poly)):
+        j = (i + 1) % len(poly)
+        if side[i] >= 0:
+            out.append(poly[i])
+        if (side[i] >= 0) != (side[j] >= 0):
+            t = side[i] / (side[i] - side[j])
+            out.append(poly[i] + t * (poly[j] - poly[i]))
+    kept = [q for k, q in enumerate(out) if np.hypot(*(q - out[k - 1])) > 1e-12]
+    return np.array(kept)
+
+
+def walls(edges: list[Edge], thickness: float = WALL_THICKNESS) -> list[np.ndarray]:
+    """One convex wall per edge, mitred where the solid has a convex corner.
+
+    Where the interior turns right (a corner of solid material pointing into the free space,
+    e.g. the lip), a plain quad would stick out past the neighbouring edge; both walls are
+    clipped along the corner's bisector so they meet there and never enter the interior.
+    """
+    quads = [wall_quad(e, thickness) for e in edges]
+    normals = [_outward_normal(e) for e in edges]
+    n = len(edges)
+    for i in range(n):
+        prev, cur = (i - 1) % n, i
+        vertex = np.asarray(edges[cur].start)
+        d_prev = np.subtract(edges[prev].end, edges[prev].start)
+        d_cur = np.subtract(edges[cur].end, edges[cur].start)
+        if d_prev[0] * d_cur[1] - d_prev[1] * d_cur[0] >= 0:
+            continue  # left turn: the walls part on the outside, nothing to clip
+        bisector = normals[prev] + normals[cur]
+        across = np.array([-bisector[1], bisector[0]])
+        if across @ d_cur < 0:
+            across = -across
+        quads[cur] = _clip(quads[cur], vertex, across)
+        quads[prev] = _clip(quads[prev], vertex, -across)
+    return quads
+
+
 def protuberance(design: DesignParameters) -> tuple[np.ndarray, np.ndarray]:
     """The finger (CCW rectangle from inside the left wall to the tip) and its tip disc."""
     p = design
@@ -193,6 +239,11 @@ def build_feeder(
             f"input chute length d = {p.d:g} cannot hold the part (length {part.length:g})",
             ("d",),
         )
+    if p.e >= -p.b / 2:
+        raise DegenerateDesign(
+            f"the left cavity wall (e = {p.e:g}) is not left of the exit chute (-b/2 = {-p.b / 2:g})",
+            ("e", "b"),
+        )
     if p.gy <= p.c:
         raise DegenerateDesign(
             f"the lip (g.y = {p.gy:g}) is not above the cavity floor (c = {p.c:g})", ("gy", "c")
@@ -207,8 +258,10 @@ def build_feeder(
     finger, tip = protuberance(p)
     tip_point = Point(p.fx, p.fy)
     if not interior.contains(tip_point):
+        nearest = min(edges, key=lambda e: LineString([e.start, e.end]).distance(tip_point))
         raise DegenerateDesign(
-            f"the protuberance tip f = ({p.fx:g}, {p.fy:g}) lies inside a wall", ("fx", "fy", "e", "c")
+            f"the protuberance tip f = ({p.fx:g}, {p.fy:g}) lies inside a wall ({nearest.label})",
+            tuple(dict.fromkeys(("fx", "fy", *nearest.parameters))),
         )
     for edge in edges:
         if edge.label in ("left cavity wall", "cavity floor (left)", "left chamfer"):
@@ -219,9 +272,9 @@ def build_feeder(
                 tuple(dict.fromkeys(("fx", "fy", "r", *edge.parameters))),
             )
 
-    walls = [wall_quad(e) for e in edges]
+    wall_polygons = walls(edges)
     labels = [e.label for e in edges] + ["protuberance finger", "protuberance tip"]
-    obstacles = Obstacles(tuple([*walls, finger]), tip.reshape(1, 3), tuple(labels))
+    obstacles = Obstacles(tuple([*wall_polygons, finger]), tip.reshape(1, 3), tuple(labels))
 
     u = np.array([math.cos(p.theta), math.sin(p.theta)])
     nrm = np.array([-math.sin(p.theta), math.cos(p.theta)])
@@ -232,7 +285,7 @@ def build_feeder(
         com = centre + part.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
         starts[orientation] = (float(com[0]), float(com[1]), yaw)
 
-    solid = shapely.unary_union([Polygon(w) for w in walls] + [Polygon(finger), tip_point.buffer(p.r)])
+    solid = shapely.unary_union([Polygon(w) for w in wall_polygons] + [Polygon(finger), tip_point.buffer(p.r)])
     for orientation, pose in starts.items():
         if _pose_polygon(part, pose).intersection(solid).area > 1e-9:
             raise DegenerateDesign(

@@ -184,6 +184,15 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     )
 
 
+def _yaml_problem(exc: yaml.YAMLError) -> str:
+    """PyYAML's error on one line: the problem and where it is."""
+    problem = getattr(exc, "problem", None)
+    mark = getattr(exc, "problem_mark", None)
+    if problem and mark is not None:
+        return f"{problem} (line {mark.line + 1}, column {mark.column + 1})"
+    return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+
+
 def load_scene(path: str | Path) -> Scene:
     """Read a scene file; any problem is a :class:`SceneError` naming the file and field."""
     path = Path(path)
@@ -194,7 +203,7 @@ def load_scene(path: str | Path) -> Scene:
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as exc:
-        raise SceneError(f"'{path}' is not valid YAML: {exc}") from None
+        raise SceneError(f"'{path}' is not valid YAML: {_yaml_problem(exc)}") from None
     try:
         return scene_from_dict(data, name=path.stem)
     except SceneError as exc:

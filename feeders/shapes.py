@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shapely.geometry import LinearRing
 
 
 class ShapeError(ValueError):
@@ -71,6 +72,8 @@ def convex_pieces(vertices: np.ndarray | list[list[float]], field: str = "polygo
     area = signed_area(v)
     if abs(area) < 1e-12:
         raise ShapeError(f"{field}: polygon has zero area")
+    if not LinearRing(v).is_simple:
+        raise ShapeError(f"{field}: polygon is not simple (its edges cross)")
     if area < 0:
         v = v[::-1].copy()
     if is_convex(v):
