@@ -60,8 +60,11 @@ def draw_atlas(out_dir: str | Path, seed: int = 0, extra: int = 6) -> list[Path]
             scenes.append(build_feeder(design, name=name))
         except DegenerateDesign:
             continue
-    paths = [scene_figure([build_feeder(PRESETS["table3"], name="table3")], ["table3"],
-                          out_dir / "table3.png")]
+    paths = [
+        scene_figure(
+            [build_feeder(PRESETS["table3"], name="table3")], ["table3"], out_dir / "table3.png"
+        )
+    ]
     titles = [f"corner {s.name}" for s in scenes]
     paths.append(scene_figure(scenes, titles, out_dir / "corners.png"))
     return paths

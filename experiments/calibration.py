@@ -35,16 +35,29 @@ class CalibrationRow:
         return self.feasible == self.paper_feasible
 
 
-def calibrate(runs: int = 5, time_limit: float = 10.0, planner: str = "rrt",
-              names: tuple[str, ...] | None = None, progress=None) -> list[CalibrationRow]:  # noqa: ANN001
+def calibrate(
+    runs: int = 5,
+    time_limit: float = 10.0,
+    planner: str = "rrt",
+    names: tuple[str, ...] | None = None,
+    progress=None,
+) -> list[CalibrationRow]:
     """Plan every named preset ``runs`` times per orientation (seeds 1..runs)."""
     rows = []
     for name in names or tuple(PRESETS):
         try:
             scene = build_feeder(PRESETS[name], name=name)
         except DegenerateDesign as exc:
-            rows.append(CalibrationRow(name, PAPER_GEOMETRIC_VERDICT[name], False, str(exc),
-                                       dict.fromkeys(ORIENTATIONS, 0), runs))
+            rows.append(
+                CalibrationRow(
+                    name,
+                    PAPER_GEOMETRIC_VERDICT[name],
+                    False,
+                    str(exc),
+                    dict.fromkeys(ORIENTATIONS, 0),
+                    runs,
+                )
+            )
             continue
         solved = {}
         for orientation in ORIENTATIONS:

@@ -51,8 +51,11 @@ def _parser() -> argparse.ArgumentParser:
     scene_args(plan)
     plan.add_argument("--level", default="geometric", choices=sorted(LEVELS))
     plan.add_argument("--planner", default="rrt", choices=sorted(PLANNERS))
-    plan.add_argument("--orientation", default="both",
-                      help="both, or one start of the scene (feeder: heavy_leading, heavy_trailing)")
+    plan.add_argument(
+        "--orientation",
+        default="both",
+        help="both, or one start of the scene (feeder: heavy_leading, heavy_trailing)",
+    )
     plan.add_argument("--time", type=float, default=5.0, help="planning time per run (s)")
     plan.add_argument("--seed", type=int, default=1)
     plan.add_argument("--out", type=Path, default=None, help="directory for the picture")
@@ -66,8 +69,12 @@ def _parser() -> argparse.ArgumentParser:
     cal = sub.add_parser("calibrate", help="the geometric level's verdict on the paper's designs")
     cal.add_argument("--runs", type=int, default=3, help="seeded RRT runs per orientation")
     cal.add_argument("--time", type=float, default=10.0, help="budget per run (s)")
-    cal.add_argument("--out", type=Path, default=None,
-                     help="directory for pictures of table3 and of the box's corners")
+    cal.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        help="directory for pictures of table3 and of the box's corners",
+    )
 
     bench = sub.add_parser("bench", help="measure the speed of checks, propagation, planning")
     bench.add_argument("--quick", action="store_true", help="fewer repeats and seeds")
@@ -77,7 +84,7 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _load_scene(design: str | None, scene_file: Path | None):  # noqa: ANN202
+def _load_scene(design: str | None, scene_file: Path | None):
     from feeders.design import DesignError, DesignParameters, preset
     from feeders.feeder import DegenerateDesign, build_feeder
     from feeders.scene_yaml import SceneError, load_scene
@@ -121,9 +128,7 @@ def _cmd_plan(args: argparse.Namespace) -> int:
             out.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise UsageError(f"--out: cannot create directory '{out}': {exc.strerror}") from None
-    results = [
-        plan(scene, args.level, args.planner, o, args.time, args.seed) for o in orientations
-    ]
+    results = [plan(scene, args.level, args.planner, o, args.time, args.seed) for o in orientations]
     figure = None
     if out is not None:
         stem = f"plan_{scene.name}_{args.level}_{args.planner}".replace(" ", "_")
@@ -132,12 +137,16 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({"runs": [r.summary() for r in results], "figure": figure}, indent=2))
         return 0
-    print(f"{scene.name} | level {args.level} | planner {args.planner} | seed {args.seed} | "
-          f"budget {args.time:g} s")
+    print(
+        f"{scene.name} | level {args.level} | planner {args.planner} | seed {args.seed} | "
+        f"budget {args.time:g} s"
+    )
     print(f"{'orientation':<16}{'solved':>7}{'time (s)':>10}{'tree':>8}{'path length':>13}")
     for r in results:
-        print(f"{r.orientation:<16}{'yes' if r.solved else 'no':>7}{r.time:>10.3f}"
-              f"{r.tree_size:>8}{r.path_length:>13.2f}")
+        print(
+            f"{r.orientation:<16}{'yes' if r.solved else 'no':>7}{r.time:>10.3f}"
+            f"{r.tree_size:>8}{r.path_length:>13.2f}"
+        )
     if figure:
         print(f"picture: {figure}")
     return 0
@@ -168,8 +177,11 @@ def _cmd_calibrate(args: argparse.Namespace) -> int:
     if not (0.0 < args.time <= 3600.0):
         raise UsageError(f"--time = {args.time} is outside the allowed range (0, 3600] s")
     with tqdm(total=len(PRESETS) * len(CAL_ORIENTATIONS), desc="calibrating", unit="run") as bar:
-        rows = calibrate(runs=args.runs, time_limit=args.time,
-                         progress=lambda name, _o: bar.set_postfix_str(name) or bar.update())
+        rows = calibrate(
+            runs=args.runs,
+            time_limit=args.time,
+            progress=lambda name, _o: bar.set_postfix_str(name) or bar.update(),
+        )
     print(markdown_table(rows))
     corners, built, reasons = corner_census()
     print(f"\ncorners of the Table 2 box that build: {built} of {corners}")

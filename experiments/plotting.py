@@ -13,14 +13,14 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
-from matplotlib.patches import Circle, Polygon, Rectangle  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.patches import Circle, Polygon, Rectangle
 
-from feeders.part import Peg  # noqa: E402
-from feeders.scene import Scene  # noqa: E402
-from planners.plan import PlanResult  # noqa: E402
+from feeders.part import Peg
+from feeders.scene import Scene
+from planners.plan import PlanResult
 
 WALL = "#8c8c8c"
 HEAVY = "#c0392b"
@@ -39,8 +39,9 @@ def part_outline(part: Peg, pose: Sequence[float]) -> tuple[np.ndarray, np.ndarr
     return light @ rot + pose[:2], heavy @ rot + pose[:2]
 
 
-def draw_part(ax: plt.Axes, part: Peg, pose: Sequence[float], alpha: float = 1.0,
-              edge: str = "k") -> None:
+def draw_part(
+    ax: plt.Axes, part: Peg, pose: Sequence[float], alpha: float = 1.0, edge: str = "k"
+) -> None:
     """The part with its heavy half dark and its centre of mass as a dot."""
     light, heavy = part_outline(part, pose)
     ax.add_patch(Polygon(light, closed=True, fc=LIGHT, ec=edge, lw=0.6, alpha=alpha, zorder=4))
@@ -59,8 +60,17 @@ def draw_scene(ax: plt.Axes, scene: Scene, starts: bool = True, goal: bool = Tru
         ax.plot(ring[:, 0], ring[:, 1], color="k", lw=0.8, zorder=3)
     if goal:
         g = scene.goal
-        ax.add_patch(Rectangle((g.x_min, g.y_min), g.x_max - g.x_min, g.y_max - g.y_min,
-                               fc="#2ca02c", alpha=0.25, ec="#2ca02c", zorder=1))
+        ax.add_patch(
+            Rectangle(
+                (g.x_min, g.y_min),
+                g.x_max - g.x_min,
+                g.y_max - g.y_min,
+                fc="#2ca02c",
+                alpha=0.25,
+                ec="#2ca02c",
+                zorder=1,
+            )
+        )
     if starts:
         for pose in scene.starts.values():
             draw_part(ax, scene.part, pose, alpha=0.5)
@@ -80,8 +90,9 @@ def draw_tree(ax: plt.Axes, result: PlanResult, colour: str = "#555555") -> None
     ax.add_collection(LineCollection(segments, colors=colour, linewidths=0.3, alpha=0.5, zorder=3))
 
 
-def draw_path(ax: plt.Axes, result: PlanResult, part: Peg, colour: str = "#1f77b4",
-              snapshots: int = 6) -> None:
+def draw_path(
+    ax: plt.Axes, result: PlanResult, part: Peg, colour: str = "#1f77b4", snapshots: int = 6
+) -> None:
     """The centre-of-mass path (thick) and a few poses of the part along it."""
     path = result.fine_path
     if len(path) == 0:

@@ -63,6 +63,7 @@ def _dedupe(points: list[tuple[tuple[float, float], str, tuple[str, ...]]]) -> l
     out: list = []
     for p in points:
         if out and math.dist(out[-1][0], p[0]) < 1e-9:
+            out[-1] = p  # the earlier edge has zero length: the later one starts here
             continue
         out.append(p)
     if len(out) > 1 and math.dist(out[0][0], out[-1][0]) < 1e-9:
@@ -70,8 +71,14 @@ def _dedupe(points: list[tuple[tuple[float, float], str, tuple[str, ...]]]) -> l
     return out
 
 
-def interior_edges(design: DesignParameters, part: Peg = DEFAULT_PEG) -> list[Edge]:
-    """The boundary of the free interior, counter-clockwise (interior on the left)."""
+def interior_edges(
+    design: DesignParameters, part: Peg = DEFAULT_PEG, roof_rise: float = 0.0
+) -> list[Edge]:
+    """The boundary of the free interior, counter-clockwise (interior on the left).
+
+    ``roof_rise`` lifts the cavity roof above the end of the input chute's upper wall (the
+    paper fixes no roof height; 0 is this reconstruction's choice).
+    """
     p = design
     half_b = p.b / 2
     depth = 2.0 * part.length
@@ -82,7 +89,7 @@ def interior_edges(design: DesignParameters, part: Peg = DEFAULT_PEG) -> list[Ed
     top_floor = (g[0] + p.d * u[0], g[1] + p.d * u[1])
     top_ceiling = (top_floor[0] + p.a * n[0], top_floor[1] + p.a * n[1])
     lip_ceiling = (g[0] + p.a * n[0], g[1] + p.a * n[1])
-    roof_y = lip_ceiling[1]
+    roof_y = lip_ceiling[1] + roof_rise
 
     # (vertex, label of the edge that starts at this vertex, parameters of that edge)
     pts: list[tuple[tuple[float, float], str, tuple[str, ...]]] = [
@@ -98,7 +105,11 @@ def interior_edges(design: DesignParameters, part: Peg = DEFAULT_PEG) -> list[Ed
     elif p.gx >= half_b:
         pts += [
             ((half_b, 0.0), "right chamfer", ("b", "c", "alpha")),
-            ((p.gx, (p.gx - half_b) * math.tan(p.alpha)), "wall below the lip", ("gx", "gy", "alpha")),
+            (
+                (p.gx, (p.gx - half_b) * math.tan(p.alpha)),
+                "wall below the lip",
+                ("gx", "gy", "alpha"),
+            ),
         ]
     else:
         pts += [((half_b, 0.0), "underside of the lip", ("gx", "gy", "b"))]
@@ -106,7 +117,8 @@ def interior_edges(design: DesignParameters, part: Peg = DEFAULT_PEG) -> list[Ed
         (g, "input chute floor", ("gx", "gy", "d", "theta")),
         (top_floor, "input chute cap", ("a", "d", "theta")),
         (top_ceiling, "input chute upper wall", ("a", "d", "theta", "gx", "gy")),
-        (lip_ceiling, "cavity roof", ("e", "a", "theta", "gy")),
+        (lip_ceiling, "wall above the input chute", ("a", "theta", "gx", "gy")),
+        ((lip_ceiling[0], roof_y), "cavity roof", ("e", "a", "theta", "gy")),
         ((p.e, roof_y), "left cavity wall", ("e",)),
     ]
     if p.e <= -mouth:
@@ -115,7 +127,9 @@ def interior_edges(design: DesignParameters, part: Peg = DEFAULT_PEG) -> list[Ed
             ((-mouth, p.c), "left chamfer", ("b", "c", "alpha")),
         ]
     else:
-        pts += [((p.e, (-half_b - p.e) * math.tan(p.alpha)), "left chamfer", ("b", "c", "alpha", "e"))]
+        pts += [
+            ((p.e, (-half_b - p.e) * math.tan(p.alpha)), "left chamfer", ("b", "c", "alpha", "e"))
+        ]
     pts += [((-half_b, 0.0), "exit chute left wall", ("b",))]
     pts = _dedupe(pts)
     return [
@@ -217,6 +231,7 @@ def build_feeder(
     friction: float = 0.3,
     gravity: tuple[float, float] = (0.0, -9.81),
     name: str = "feeder",
+    roof_rise: float = 0.0,
 ) -> Scene:
     """The scene of the feeder with this design, or :class:`DegenerateDesign` with a reason.
 
@@ -241,14 +256,17 @@ def build_feeder(
         )
     if p.e >= -p.b / 2:
         raise DegenerateDesign(
-            f"the left cavity wall (e = {p.e:g}) is not left of the exit chute (-b/2 = {-p.b / 2:g})",
+            f"the left cavity wall (e = {p.e:g}) is not left of the exit chute "
+            f"(-b/2 = {-p.b / 2:g})",
             ("e", "b"),
         )
     if p.gy <= p.c:
         raise DegenerateDesign(
             f"the lip (g.y = {p.gy:g}) is not above the cavity floor (c = {p.c:g})", ("gy", "c")
         )
-    edges = interior_edges(p, part)
+    if not (math.isfinite(roof_rise) and 0.0 <= roof_rise <= 10.0):
+        raise ValueError(f"roof_rise = {roof_rise!r} is outside the allowed range [0, 10]")
+    edges = interior_edges(p, part, roof_rise)
     _check_crossings(edges)
     outline = np.array([e.start for e in edges])
     interior = Polygon(outline)
@@ -285,7 +303,9 @@ def build_feeder(
         com = centre + part.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
         starts[orientation] = (float(com[0]), float(com[1]), yaw)
 
-    solid = shapely.unary_union([Polygon(w) for w in wall_polygons] + [Polygon(finger), tip_point.buffer(p.r)])
+    solid = shapely.unary_union(
+        [Polygon(w) for w in wall_polygons] + [Polygon(finger), tip_point.buffer(p.r)]
+    )
     for orientation, pose in starts.items():
         if _pose_polygon(part, pose).intersection(solid).area > 1e-9:
             raise DegenerateDesign(

@@ -30,7 +30,9 @@ class PartError(ValueError):
 def _check(name: str, value: float, low: float, high: float) -> float:
     value = float(value)
     if not math.isfinite(value) or not low <= value <= high:
-        raise PartError(f"part '{name}' = {value!r} is outside the allowed range [{low:g}, {high:g}]")
+        raise PartError(
+            f"part '{name}' = {value!r} is outside the allowed range [{low:g}, {high:g}]"
+        )
     return value
 
 
@@ -60,7 +62,11 @@ class Peg:
 
     @classmethod
     def two_density(
-        cls, length: float = 2.0, width: float = 1.0, mass: float = 1.0, heavy_fraction: float = 0.75
+        cls,
+        length: float = 2.0,
+        width: float = 1.0,
+        mass: float = 1.0,
+        heavy_fraction: float = 0.75,
     ) -> Peg:
         """A peg made of two uniform halves; the heavy half has ``heavy_fraction`` of the mass.
 
@@ -72,7 +78,9 @@ class Peg:
         offset = (m_h - m_l) / mass * length / 4.0
         half = length / 2.0
         own = (half**2 + width**2) / 12.0
-        inertia = (m_h + m_l) * own + m_h * (length / 4 - offset) ** 2 + m_l * (length / 4 + offset) ** 2
+        inertia = (
+            (m_h + m_l) * own + m_h * (length / 4 - offset) ** 2 + m_l * (length / 4 + offset) ** 2
+        )
         return cls(length=length, width=width, mass=mass, com_offset=offset, inertia=inertia)
 
     def body_vertices(self) -> np.ndarray:

@@ -80,7 +80,9 @@ class InputSet:
         for name in ("max_speed", "max_turn"):
             value = getattr(self, name)
             if not (math.isfinite(value) and 0.0 < value <= 1e3):
-                raise ValueError(f"inputs.{name} = {value!r} is outside the allowed range (0, 1000]")
+                raise ValueError(
+                    f"inputs.{name} = {value!r} is outside the allowed range (0, 1000]"
+                )
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         high = np.array([self.max_speed, self.max_speed, self.max_turn])

@@ -29,7 +29,7 @@ import yaml
 
 from feeders.design import DesignError, DesignParameters, preset
 from feeders.feeder import DegenerateDesign, build_feeder
-from feeders.part import Peg, PartError
+from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
 
@@ -38,8 +38,18 @@ class SceneError(ValueError):
     """A scene file that cannot be read or is not valid; the message names the field."""
 
 
-_TOP_KEYS = {"name", "feeder", "obstacles", "bounds", "starts", "goal", "part", "friction",
-             "gravity", "inputs"}
+_TOP_KEYS = {
+    "name",
+    "feeder",
+    "obstacles",
+    "bounds",
+    "starts",
+    "goal",
+    "part",
+    "friction",
+    "gravity",
+    "inputs",
+}
 
 
 def _number(value: Any, field: str, low: float = -math.inf, high: float = math.inf) -> float:
@@ -139,8 +149,14 @@ def _goal(spec: Any) -> Goal:
     y = _numbers(spec["y"], "goal.y", 2)
     if x[0] >= x[1] or y[0] >= y[1]:
         raise SceneError("goal.x and goal.y must be [low, high] with low < high")
-    return Goal(x[0], x[1], y[0], y[1], _number(spec["yaw"], "goal.yaw", -math.pi, math.pi),
-                _number(spec["yaw_tol"], "goal.yaw_tol", 1e-6, math.pi))
+    return Goal(
+        x[0],
+        x[1],
+        y[0],
+        y[1],
+        _number(spec["yaw"], "goal.yaw", -math.pi, math.pi),
+        _number(spec["yaw_tol"], "goal.yaw_tol", 1e-6, math.pi),
+    )
 
 
 def scene_from_dict(data: Any, name: str = "scene") -> Scene:
@@ -152,7 +168,9 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     gravity = tuple(_numbers(data.get("gravity", [0.0, -9.81]), "gravity", 2))
     inputs = _inputs(data.get("inputs"))
     if ("feeder" in data) == ("obstacles" in data):
-        raise SceneError("scene: give exactly one of 'feeder' (parametric) or 'obstacles' (free-form)")
+        raise SceneError(
+            "scene: give exactly one of 'feeder' (parametric) or 'obstacles' (free-form)"
+        )
     if "feeder" in data:
         extra = sorted({"bounds", "starts", "goal"} & set(data))
         if extra:

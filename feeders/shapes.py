@@ -62,7 +62,9 @@ def ear_clip(vertices: np.ndarray) -> list[np.ndarray]:
     return triangles
 
 
-def convex_pieces(vertices: np.ndarray | list[list[float]], field: str = "polygon") -> list[np.ndarray]:
+def convex_pieces(
+    vertices: np.ndarray | list[list[float]], field: str = "polygon"
+) -> list[np.ndarray]:
     """A simple polygon as a list of CCW convex pieces (itself if already convex)."""
     v = np.asarray(vertices, dtype=float)
     if v.ndim != 2 or v.shape[1] != 2 or len(v) < 3:
@@ -120,9 +122,7 @@ class Obstacles:
     def extent(self) -> tuple[float, float, float, float]:
         """``(xmin, xmax, ymin, ymax)`` of all obstacles."""
         pts = [p for p in self.polygons]
-        pts += [
-            np.array([[cx - r, cy - r], [cx + r, cy + r]]) for cx, cy, r in self.circles
-        ]
+        pts += [np.array([[cx - r, cy - r], [cx + r, cy + r]]) for cx, cy, r in self.circles]
         allp = np.vstack(pts)
         return (
             float(allp[:, 0].min()),

@@ -12,24 +12,24 @@ from collections.abc import Callable
 from planners.spaces import state_codec
 
 
-def validity_checker(level) -> Callable:  # noqa: ANN001
+def validity_checker(level) -> Callable:
     """``isValid(state) -> bool`` for OMPL."""
     read, _ = state_codec(level.state_dim)
     is_valid = level.is_valid
 
-    def check(state) -> bool:  # noqa: ANN001
+    def check(state) -> bool:
         return is_valid(read(state))
 
     return check
 
 
-def state_propagator(level) -> Callable:  # noqa: ANN001
+def state_propagator(level) -> Callable:
     """``propagate(start, control, duration, result)`` for OMPL."""
     read, write = state_codec(level.state_dim)
     propagate = level.propagate
     dim = level.control_dim
 
-    def prop(start, control, duration, result) -> None:  # noqa: ANN001
+    def prop(start, control, duration, result) -> None:
         write(result, propagate(read(start), [control[i] for i in range(dim)], duration))
 
     return prop

@@ -18,7 +18,9 @@ class GoalBox(ob.GoalSampleableRegion):
     Goal samples are uniform in the box and the yaw tolerance, drawn from ``rng``.
     """
 
-    def __init__(self, si: ob.SpaceInformation, goal: Goal, state_dim: int, rng: np.random.Generator):
+    def __init__(
+        self, si: ob.SpaceInformation, goal: Goal, state_dim: int, rng: np.random.Generator
+    ):
         super().__init__(si)
         self.goal = goal
         self.rng = rng
@@ -26,17 +28,17 @@ class GoalBox(ob.GoalSampleableRegion):
         self.state_dim = state_dim
         self.setThreshold(1e-9)
 
-    def distanceGoal(self, state) -> float:  # noqa: ANN001, N802
+    def distanceGoal(self, state) -> float:
         x, y, yaw = self.read(state)[:3]
         g = self.goal
         return g.position_gap(x, y) + YAW_WEIGHT * g.yaw_gap(yaw)
 
-    def sampleGoal(self, state) -> None:  # noqa: ANN001, N802
+    def sampleGoal(self, state) -> None:
         g = self.goal
         x = self.rng.uniform(g.x_min, g.x_max)
         y = self.rng.uniform(g.y_min, g.y_max)
         yaw = g.yaw + self.rng.uniform(-g.yaw_tol, g.yaw_tol)
         self.write(state, (x, y, yaw, 0.0, 0.0, 0.0)[: self.state_dim])
 
-    def maxSampleCount(self) -> int:  # noqa: N802
+    def maxSampleCount(self) -> int:
         return 2**31 - 1

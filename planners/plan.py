@@ -91,8 +91,9 @@ class PlanResult:
         }
 
 
-def fine_path(level, path: np.ndarray, controls: np.ndarray, durations: np.ndarray,
-              step: float) -> np.ndarray:  # noqa: ANN001
+def fine_path(
+    level, path: np.ndarray, controls: np.ndarray, durations: np.ndarray, step: float
+) -> np.ndarray:
     """Re-propagate a control path in pieces of at most ``step`` seconds: the states between."""
     if len(path) == 0:
         return np.zeros((0, level.state_dim))
@@ -162,7 +163,10 @@ def plan(
         p = ss.getSolutionPath()
         path = np.array([read(p.getState(i)) for i in range(p.getStateCount())])
         controls = np.array(
-            [[p.getControl(i)[k] for k in range(level.control_dim)] for i in range(p.getControlCount())]
+            [
+                [p.getControl(i)[k] for k in range(level.control_dim)]
+                for i in range(p.getControlCount())
+            ]
         ).reshape(-1, level.control_dim)
         durations = np.array([p.getControlDuration(i) for i in range(p.getControlCount())])
         goal_distance = goal.distanceGoal(p.getState(p.getStateCount() - 1))

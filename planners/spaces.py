@@ -56,21 +56,21 @@ def state_codec(state_dim: int) -> tuple[Callable, Callable]:
     """``(read, write)``: an OMPL state to a tuple of floats, and a tuple into an OMPL state."""
     if state_dim == 3:
 
-        def read(s) -> tuple[float, ...]:  # noqa: ANN001
+        def read(s) -> tuple[float, ...]:
             return (s.getX(), s.getY(), s.getYaw())
 
-        def write(s, v: Sequence[float]) -> None:  # noqa: ANN001
+        def write(s, v: Sequence[float]) -> None:
             s.setX(v[0])
             s.setY(v[1])
             s.setYaw(v[2])
 
         return read, write
 
-    def read6(s) -> tuple[float, ...]:  # noqa: ANN001
+    def read6(s) -> tuple[float, ...]:
         p, v = s[0], s[1]
         return (p.getX(), p.getY(), p.getYaw(), v[0], v[1], v[2])
 
-    def write6(s, v: Sequence[float]) -> None:  # noqa: ANN001
+    def write6(s, v: Sequence[float]) -> None:
         p, w = s[0], s[1]
         p.setX(v[0])
         p.setY(v[1])

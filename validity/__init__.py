@@ -12,7 +12,7 @@ from validity.geometric import GeometricLevel
 LEVELS = {"geometric": GeometricLevel}
 
 
-def make_level(name: str, scene, **options):  # noqa: ANN001, ANN201
+def make_level(name: str, scene, **options):
     """The level called ``name`` on ``scene``; the error lists the levels there are."""
     try:
         cls = LEVELS[name]

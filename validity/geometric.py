@@ -2,8 +2,9 @@
 
 State: the pose ``q = (x, y, yaw)`` of the part's centre of mass. Input: a pose-increment rate
 ``u = (vx, vy, omega)`` from the bounded set U. One propagation of duration T takes
-``ceil(T / h)`` steps ``q <- q + h u`` and stops at the last pose before a step would penetrate
-an obstacle or leave the bounds, as Algorithm 1 does (``break`` on ``Collision``).
+``n = ceil(T / h)`` equal steps ``q <- q + (T/n) u`` (each at most h) and stops at the last
+pose before a step would penetrate an obstacle or leave the bounds, as Algorithm 1 does
+(``break`` on ``Collision``).
 """
 
 from __future__ import annotations
@@ -41,8 +42,9 @@ def propagate_increments(
     x, y, yaw, vx, vy, omega, duration, h, body, verts, counts, aabbs, circles, bounds
 ):
     """Eq. 9 stepped at ``h`` for ``duration``; returns ``(x, y, yaw, steps_taken, blocked)``."""
-    n = max(1, int(math.ceil(duration / h - 1e-9)))
+    n = max(1, math.ceil(duration / h - 1e-9))
     dt = duration / n
+    yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
     for k in range(n):
         nx, ny = x + dt * vx, y + dt * vy
         nyaw = yaw + dt * omega
@@ -77,18 +79,31 @@ class GeometricLevel:
         return (float(pose[0]), float(pose[1]), float(pose[2]))
 
     def is_valid(self, state: Sequence[float]) -> bool:
-        return bool(pose_is_valid(state[0], state[1], state[2], *self._geometry, self.arrays.bounds))
+        return bool(
+            pose_is_valid(state[0], state[1], state[2], *self._geometry, self.arrays.bounds)
+        )
 
     def clearance(self, state: Sequence[float]) -> float:
         """Smallest signed distance to an obstacle (negative: penetration depth)."""
-        return float(clearance_at_pose(self.arrays.body, state[0], state[1], state[2],
-                                       *self._geometry[1:], -np.inf))
+        return float(
+            clearance_at_pose(
+                self.arrays.body, state[0], state[1], state[2], *self._geometry[1:], -np.inf
+            )
+        )
 
     def propagate(
         self, state: Sequence[float], control: Sequence[float], duration: float
     ) -> tuple[float, float, float]:
         x, y, yaw, _, _ = propagate_increments(
-            state[0], state[1], state[2], control[0], control[1], control[2], duration,
-            self.step, *self._geometry, self.arrays.bounds,
+            state[0],
+            state[1],
+            state[2],
+            control[0],
+            control[1],
+            control[2],
+            duration,
+            self.step,
+            *self._geometry,
+            self.arrays.bounds,
         )
         return (x, y, yaw)

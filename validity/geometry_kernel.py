@@ -151,7 +151,8 @@ def clearance_at(
         x1, y1 = max(x1, world[i, 0]), max(y1, world[i, 1])
     best = np.inf
     for p in range(verts.shape[0]):
-        if _box_gap(x0, y0, x1, y1, aabbs[p]) >= best:
+        gap = _box_gap(x0, y0, x1, y1, aabbs[p])
+        if gap > 0.0 and gap >= best:  # overlapping boxes (gap 0) bound nothing below 0
             continue
         d = convex_signed_distance(world, n, verts[p], counts[p])
         if d < best:
@@ -162,7 +163,8 @@ def clearance_at(
         cx, cy, r = circles[q, 0], circles[q, 1], circles[q, 2]
         gx = max(x0 - cx, 0.0, cx - x1)
         gy = max(y0 - cy, 0.0, cy - y1)
-        if math.sqrt(gx * gx + gy * gy) - r >= best:
+        gap = math.sqrt(gx * gx + gy * gy)
+        if gap > 0.0 and gap - r >= best:
             continue
         d = circle_signed_distance(cx, cy, r, world, n)
         if d < best:

@@ -29,8 +29,23 @@ def _cli(*args: str) -> subprocess.CompletedProcess:
 def test_plan_both_orientations_prints_summary_and_writes_picture(tmp_path):
     """A normal run: a table on stdout, nothing on stderr (no OMPL log, no nanobind leak lines)."""
     out = tmp_path / "out"
-    proc = _cli("plan", "--design", "table3", "--level", "geometric", "--planner", "rrt",
-                "--orientation", "both", "--time", "5", "--seed", "1", "--out", str(out))
+    proc = _cli(
+        "plan",
+        "--design",
+        "table3",
+        "--level",
+        "geometric",
+        "--planner",
+        "rrt",
+        "--orientation",
+        "both",
+        "--time",
+        "5",
+        "--seed",
+        "1",
+        "--out",
+        str(out),
+    )
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == ""
     lines = proc.stdout.splitlines()
@@ -42,8 +57,9 @@ def test_plan_both_orientations_prints_summary_and_writes_picture(tmp_path):
 
 
 def test_verbose_shows_ompl_log():
-    proc = _cli("plan", "--design", "table3", "--orientation", "heavy_trailing", "--time", "5",
-                "--verbose")
+    proc = _cli(
+        "plan", "--design", "table3", "--orientation", "heavy_trailing", "--time", "5", "--verbose"
+    )
     assert proc.returncode == 0
     assert "RRT" in proc.stdout + proc.stderr
 

@@ -9,6 +9,7 @@ of the part moves in one step (the resolution at which Eq. 9 and Algorithm 1 che
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -69,7 +70,7 @@ def _recheck(scene, fine_path: np.ndarray) -> tuple[float, float]:
         poly = _part_polygon(scene, q)
         if solid.intersects(poly):
             at_states = max(at_states, poly.intersection(solid).area)
-    for q0, q1 in zip(fine_path[:-1], fine_path[1:], strict=True):
+    for q0, q1 in itertools.pairwise(fine_path):
         dyaw = math.remainder(q1[2] - q0[2], 2 * math.pi)
         for t in np.linspace(0.0, 1.0, SUBDIVISIONS + 1)[1:-1]:
             pose = (q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1]), q0[2] + t * dyaw)
