@@ -30,7 +30,7 @@ def corner_designs() -> list[tuple[str, DesignParameters]]:
 def corner_census() -> tuple[int, int, Counter]:
     """(corners, corners that build, count of rejection reasons by parameters named)."""
     corners = corner_designs()
-    built, reasons = 0, Counter()
+    built, reasons = 0, Counter[str]()
     for _, design in corners:
         try:
             build_feeder(design)

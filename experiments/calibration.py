@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from feeders.design import PAPER_GEOMETRIC_VERDICT, PRESETS
 from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.part import DEFAULT_PEG, Peg
 from planners.plan import plan
 
 ORIENTATIONS = ("heavy_leading", "heavy_trailing")
@@ -41,12 +42,13 @@ def calibrate(
     planner: str = "rrt",
     names: tuple[str, ...] | None = None,
     progress=None,
+    part: Peg = DEFAULT_PEG,
 ) -> list[CalibrationRow]:
     """Plan every named preset ``runs`` times per orientation (seeds 1..runs)."""
     rows = []
     for name in names or tuple(PRESETS):
         try:
-            scene = build_feeder(PRESETS[name], name=name)
+            scene = build_feeder(PRESETS[name], part=part, name=name)
         except DegenerateDesign as exc:
             rows.append(
                 CalibrationRow(

@@ -87,7 +87,9 @@ def draw_tree(ax: plt.Axes, result: PlanResult, colour: str = "#555555") -> None
         return
     xy = result.tree_vertices[:, :2]
     segments = np.stack([xy[result.tree_edges[:, 0]], xy[result.tree_edges[:, 1]]], axis=1)
-    ax.add_collection(LineCollection(segments, colors=colour, linewidths=0.3, alpha=0.5, zorder=3))
+    ax.add_collection(
+        LineCollection(list(segments), colors=colour, linewidths=0.3, alpha=0.5, zorder=3)
+    )
 
 
 def draw_path(

@@ -25,6 +25,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
 from feeders.design import DesignError, DesignParameters, preset
@@ -137,7 +138,9 @@ def _obstacles(spec: Any) -> Obstacles:
             cx, cy = _numbers(c["centre"], f"{field}.circle.centre", 2)
             circles.append((cx, cy, _number(c["radius"], f"{field}.circle.radius", 1e-9, 1e6)))
             labels_c.append(label)
-    return Obstacles(tuple(polygons), circles, tuple(labels_p + labels_c))
+    return Obstacles(
+        tuple(polygons), np.array(circles, dtype=float).reshape(-1, 3), tuple(labels_p + labels_c)
+    )
 
 
 def _goal(spec: Any) -> Goal:

@@ -46,16 +46,35 @@ def point_segment_distance(
 
 
 @njit(cache=True)
+def _edge_normal(a: np.ndarray, i: int, na: int) -> tuple[float, float, bool]:
+    """Unit outward normal of edge i of CCW polygon a[:na]; False for a zero-length edge."""
+    j = (i + 1) % na
+    ex, ey = a[j, 0] - a[i, 0], a[j, 1] - a[i, 1]
+    ll = math.sqrt(ex * ex + ey * ey)
+    if ll <= _EDGE_EPS:
+        return 0.0, 0.0, False
+    return ey / ll, -ex / ll, True
+
+
+@njit(cache=True)
+def _box_of(world: np.ndarray) -> tuple[float, float, float, float]:
+    """(xmin, ymin, xmax, ymax) of points ``(n, 2)``."""
+    x0, y0 = world[0, 0], world[0, 1]
+    x1, y1 = x0, y0
+    for i in range(1, world.shape[0]):
+        x0, y0 = min(x0, world[i, 0]), min(y0, world[i, 1])
+        x1, y1 = max(x1, world[i, 0]), max(y1, world[i, 1])
+    return x0, y0, x1, y1
+
+
+@njit(cache=True)
 def _max_separation(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
     """Largest separation of b from a's edge lines (outward normals of CCW a)."""
     best = -np.inf
     for i in range(na):
-        j = (i + 1) % na
-        ex, ey = a[j, 0] - a[i, 0], a[j, 1] - a[i, 1]
-        ll = math.sqrt(ex * ex + ey * ey)
-        if ll <= _EDGE_EPS:
+        nx, ny, ok = _edge_normal(a, i, na)
+        if not ok:
             continue
-        nx, ny = ey / ll, -ex / ll
         lowest = np.inf
         for k in range(nb):
             d = nx * (b[k, 0] - a[i, 0]) + ny * (b[k, 1] - a[i, 1])
@@ -90,12 +109,9 @@ def circle_signed_distance(cx: float, cy: float, r: float, b: np.ndarray, nb: in
     """Signed distance between the disc (c, r) and the convex CCW polygon b[:nb]."""
     inside = -np.inf
     for i in range(nb):
-        j = (i + 1) % nb
-        ex, ey = b[j, 0] - b[i, 0], b[j, 1] - b[i, 1]
-        ll = math.sqrt(ex * ex + ey * ey)
-        if ll <= _EDGE_EPS:
-            continue
-        inside = max(inside, (ey * (cx - b[i, 0]) - ex * (cy - b[i, 1])) / ll)
+        nx, ny, ok = _edge_normal(b, i, nb)
+        if ok:
+            inside = max(inside, nx * (cx - b[i, 0]) + ny * (cy - b[i, 1]))
     if inside <= 0.0:
         return inside - r
     best = np.inf
@@ -144,11 +160,7 @@ def clearance_at(
     exact minimum, ``0`` for a yes/no penetration test).
     """
     n = world.shape[0]
-    x0, y0 = world[0, 0], world[0, 1]
-    x1, y1 = x0, y0
-    for i in range(1, n):
-        x0, y0 = min(x0, world[i, 0]), min(y0, world[i, 1])
-        x1, y1 = max(x1, world[i, 0]), max(y1, world[i, 1])
+    x0, y0, x1, y1 = _box_of(world)
     best = np.inf
     for p in range(verts.shape[0]):
         gap = _box_gap(x0, y0, x1, y1, aabbs[p])
@@ -202,11 +214,7 @@ def penetrates(
     skipped, and a separating axis ends the test for a polygon.
     """
     n = world.shape[0]
-    x0, y0 = world[0, 0], world[0, 1]
-    x1, y1 = x0, y0
-    for i in range(1, n):
-        x0, y0 = min(x0, world[i, 0]), min(y0, world[i, 1])
-        x1, y1 = max(x1, world[i, 0]), max(y1, world[i, 1])
+    x0, y0, x1, y1 = _box_of(world)
     for p in range(verts.shape[0]):
         b = aabbs[p]
         if b[0] > x1 or b[2] < x0 or b[1] > y1 or b[3] < y0:
