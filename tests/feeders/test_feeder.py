@@ -315,7 +315,7 @@ def test_part_wider_than_the_exit_chute_only():
 
 
 def test_input_chute_shorter_than_the_part():
-    exc = _rejection(dataclasses.replace(TABLE3, d=2.0))
+    exc = _rejection(dataclasses.replace(TABLE3, d=DEFAULT_PEG.length))
     assert exc.parameters == ("d",)
 
 

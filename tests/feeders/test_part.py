@@ -24,7 +24,8 @@ B_RANGE = (1.1, 1.3)
 
 CASES = [
     # (length, width, mass, heavy_fraction)
-    (2.0, 1.0, 1.0, 0.75),  # the defaults
+    (1.6, 1.0, 1.0, 0.75),  # the defaults
+    (2.0, 1.0, 1.0, 0.75),
     (2.0, 1.0, 1.0, 0.5),  # uniform
     (2.0, 1.0, 1.0, 1.0),  # all the mass in one half
     (3.0, 0.5, 2.5, 0.6),
@@ -74,11 +75,11 @@ def test_uniform_and_one_sided_limits_match_closed_forms():
 
 
 def test_default_peg_is_the_default_two_density_peg():
-    """Reference: grid integration for L = 2, w = 1, m = 1, heavy half 3/4 (offset 1/4,
-    inertia 17/48)."""
-    _, cx, _, inertia = _grid_moments(2.0, 1.0, 1.0, 0.75)
+    """Reference: grid integration for L = 1.6, w = 1, m = 1, heavy half 3/4 (offset 0.2,
+    inertia 77/300)."""
+    _, cx, _, inertia = _grid_moments(1.6, 1.0, 1.0, 0.75)
     for peg in (Peg(), DEFAULT_PEG, Peg.two_density()):
-        assert (peg.length, peg.width, peg.mass) == (2.0, 1.0, 1.0)
+        assert (peg.length, peg.width, peg.mass) == (1.6, 1.0, 1.0)
         assert peg.com_offset == pytest.approx(cx, rel=1e-9)
         assert peg.inertia == pytest.approx(inertia, rel=1e-5)
 
@@ -112,12 +113,13 @@ def test_heavy_end_points_along_plus_x():
     """The heavy end is the end of larger x: it is the nearer end to the centre of mass."""
     vertices = DEFAULT_PEG.body_vertices()
     heavy_end, light_end = vertices[:, 0].max(), -vertices[:, 0].min()
-    assert heavy_end == pytest.approx(0.75) and light_end == pytest.approx(1.25)
+    # L = 1.6, offset 0.2: heavy end 0.8 - 0.2 from the centre of mass, light end 0.8 + 0.2.
+    assert heavy_end == pytest.approx(0.6) and light_end == pytest.approx(1.0)
 
 
 def test_bounding_radius_is_the_farthest_corner():
     """Reference: the light-end corners, at (L/2 + offset, w/2) from the centre of mass."""
-    assert DEFAULT_PEG.bounding_radius() == pytest.approx(math.hypot(1.25, 0.5), rel=1e-12)
+    assert DEFAULT_PEG.bounding_radius() == pytest.approx(math.hypot(1.0, 0.5), rel=1e-12)
 
 
 # --- the default peg makes the paper's designs physical -------------------------------------
@@ -165,9 +167,9 @@ def test_peg_is_frozen():
     [
         ({"length": 0.0}, "length", "[0.001, 100]"),
         ({"length": math.nan}, "length", "[0.001, 100]"),
-        ({"width": 2.5}, "width", "[0.001, 2]"),  # wider than long
+        ({"width": 2.5}, "width", "[0.001, 1.6]"),  # wider than long
         ({"mass": -1.0}, "mass", "[1e-09, 1e+09]"),
-        ({"com_offset": 1.5}, "com_offset", "[0, 1]"),  # centre of mass outside the peg
+        ({"com_offset": 1.5}, "com_offset", "[0, 0.8]"),  # centre of mass outside the peg
         ({"inertia": 0.0}, "inertia", "[1e-12, 1e+12]"),
     ],
 )

@@ -330,7 +330,7 @@ def test_python_tags_are_refused_not_executed(tmp_path):
 
 def test_degenerate_design_is_a_scene_error_naming_the_parameter(tmp_path):
     values = PRESETS["table3"].to_dict()
-    values["d"] = 2.0  # shorter than the part
+    values["d"] = 1.6  # no longer than the part
     message = _scene_error(_write(tmp_path, {"feeder": {"design": values}}))
     assert "feeder" in message and "degenerate" in message and "d" in message
 

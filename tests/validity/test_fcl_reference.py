@@ -15,6 +15,7 @@ import pytest
 
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
+from feeders.part import Peg
 from feeders.scene import Scene
 from feeders.shapes import Obstacles
 from validity.fcl_reference import FCL_TOLERANCE_BAND, FclScene, cross_check_poses
@@ -81,7 +82,11 @@ def test_fcl_accounts_for_centre_of_mass_offset() -> None:
     the right end at x = 0.25; at x = 0.25 - 1e-3 FCL sees no collision, at 0.25 + 1e-3 it
     does, and turned by pi (the long end now to the right) it collides already at x = 0."""
     wall = np.array([[1.0, -5.0], [3.0, -5.0], [3.0, 5.0], [1.0, 5.0]])
-    scene = dataclasses.replace(_table3(), obstacles=Obstacles((wall,), np.zeros((0, 3))))
+    scene = dataclasses.replace(
+        _table3(),
+        obstacles=Obstacles((wall,), np.zeros((0, 3))),
+        part=Peg.two_density(length=2.0, width=1.0),
+    )
     reference = FclScene(scene)
     assert not reference.penetrates((0.25 - 1e-3, 0.0, 0.0))
     assert reference.penetrates((0.25 + 1e-3, 0.0, 0.0))

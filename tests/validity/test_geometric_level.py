@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 import pytest
 import shapely
-from test_geometry_kernel import free_scene, part_polygons, shapely_reference
+from test_geometry_kernel import PART, free_scene, part_polygons, shapely_reference
 
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
@@ -32,7 +32,7 @@ TURNING_AREA_TOL = 1e-4  # allowed chord-cutting overlap between checked poses w
 
 @functools.cache
 def _table3() -> Scene:
-    return build_feeder(PRESETS["table3"], name="table3")
+    return build_feeder(PRESETS["table3"], PART, name="table3")
 
 
 def _increments(

@@ -25,7 +25,7 @@ from shapely.geometry import Point, Polygon
 from feeders.design import PRESETS
 from feeders.feeder import DegenerateDesign, build_feeder
 from feeders.halton import halton_designs
-from feeders.part import DEFAULT_PEG
+from feeders.part import Peg
 from feeders.scene import Goal, Scene
 from feeders.shapes import Obstacles, convex_pieces
 from validity.fcl_reference import cross_check_poses
@@ -42,7 +42,9 @@ BAND = 1e-9  # |signed distance| below which a pose counts as touching and is no
 DISTANCE_TOL = 1e-9  # kernel distance vs shapely distance, separated shapes (length units)
 N_POSES = 20_000  # per scene
 HALTON_SEED = 7
-BODY = DEFAULT_PEG.body_vertices()
+# The hand-worked cases below use this part: 2 x 1, centre of mass 0.25 toward the heavy end.
+PART = Peg.two_density(length=2.0, width=1.0)
+BODY = PART.body_vertices()
 
 
 # --------------------------------------------------------------------------- scenes
@@ -54,7 +56,7 @@ def free_scene(name: str, polygons: list[np.ndarray], circles: np.ndarray) -> Sc
     return Scene(
         name=name,
         obstacles=obstacles,
-        part=DEFAULT_PEG,
+        part=PART,
         bounds=(-6.0, 6.0, -6.0, 6.0),
         starts={"heavy_leading": (0.0, 0.0, 0.0)},
         goal=Goal(x_min=-1.0, x_max=1.0, y_min=-1.0, y_max=1.0, yaw=0.0, yaw_tol=0.5),
@@ -88,7 +90,7 @@ def _halton_scenes(count: int = 3) -> list[Scene]:
     scenes = []
     for i, design in enumerate(halton_designs(4 * count, seed=HALTON_SEED)):
         try:
-            scenes.append(build_feeder(design, name=f"halton seed {HALTON_SEED} #{i}"))
+            scenes.append(build_feeder(design, PART, name=f"halton seed {HALTON_SEED} #{i}"))
         except DegenerateDesign:
             continue
         if len(scenes) == count:
@@ -104,7 +106,7 @@ SCENE_NAMES = ["table3", "halton-1", "halton-2", "halton-3", "free-form"]
 def _scene(name: str) -> Scene:
     """The scene called ``name`` in SCENE_NAMES (halton-k: the k-th Halton design that builds)."""
     if name == "table3":
-        return build_feeder(PRESETS["table3"], name="table3")
+        return build_feeder(PRESETS["table3"], PART, name="table3")
     if name == "free-form":
         return _free_form()
     return _halton_scenes()[int(name.split("-")[1]) - 1]
