@@ -1,8 +1,7 @@
 """The fidelity levels (one module each, one interface) and the kernels under them.
 
-A level is built from a scene and offers ``is_valid(state)``, ``clearance(state)``,
-``propagate(state, control, duration)``, ``control_bounds()`` and ``state_of_pose(pose)``,
-with ``name``, ``state_dim`` and ``control_dim``. Choose one by name from ``LEVELS``.
+Every level is built from a scene and keeps the contract of :class:`validity.level.Level`.
+Choose one by name from ``LEVELS``.
 """
 
 from __future__ import annotations
