@@ -39,8 +39,9 @@ from numba import njit
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
 from feeders.scene import Scene
-from validity.fcl_reference import FCL_TOLERANCE_BAND, FclScene, cross_check_poses
+from validity.fcl_reference import FCL_TOLERANCE_BAND, FclScene
 from validity.geometric import GeometricLevel, pose_is_valid, propagate_increments
+from validity.pose_samples import cross_check_poses
 
 MIN_REPEAT_TIME = 0.05  # s: each repeat loops over its workload for at least this long
 PROPAGATION_DURATION = 0.5  # s of motion per propagate call (50 steps at h = 0.01)

@@ -18,8 +18,6 @@ from feeders.shapes import Obstacles
 
 Pose = tuple[float, float, float]
 
-START_NAMES = ("heavy_leading", "heavy_trailing")
-
 
 def wrap_angle(angle: float) -> float:
     """Angle in [-pi, pi)."""

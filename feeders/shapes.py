@@ -118,15 +118,3 @@ class Obstacles:
             verts[i, len(p) :] = p[-1]
             counts[i] = len(p)
         return verts, counts, np.ascontiguousarray(self.circles)
-
-    def extent(self) -> tuple[float, float, float, float]:
-        """``(xmin, xmax, ymin, ymax)`` of all obstacles."""
-        pts = [p for p in self.polygons]
-        pts += [np.array([[cx - r, cy - r], [cx + r, cy + r]]) for cx, cy, r in self.circles]
-        allp = np.vstack(pts)
-        return (
-            float(allp[:, 0].min()),
-            float(allp[:, 0].max()),
-            float(allp[:, 1].min()),
-            float(allp[:, 1].max()),
-        )

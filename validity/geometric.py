@@ -28,13 +28,19 @@ def _in_bounds(x: float, y: float, bounds: np.ndarray) -> bool:
 
 
 @njit(cache=True)
-def pose_is_valid(x: float, y: float, yaw: float, body, verts, counts, aabbs, circles, bounds):
-    """psi_n(q) >= 0 for every obstacle, and the centre of mass within the bounds."""
+def _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds):
+    """:func:`pose_is_valid` writing the placed corners into the caller's buffer ``world``."""
     if not _in_bounds(x, y, bounds):
         return False
-    world = np.empty_like(body)
     pose_vertices(body, x, y, yaw, world)
     return not penetrates(world, verts, counts, aabbs, circles)
+
+
+@njit(cache=True)
+def pose_is_valid(x: float, y: float, yaw: float, body, verts, counts, aabbs, circles, bounds):
+    """psi_n(q) >= 0 for every obstacle, and the centre of mass within the bounds."""
+    world = np.empty_like(body)
+    return _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds)
 
 
 @njit(cache=True)
@@ -45,11 +51,12 @@ def propagate_increments(
     n = max(1, math.ceil(duration / h - 1e-9))
     dt = duration / n
     yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
+    world = np.empty_like(body)  # one buffer for every step of this propagation
     for k in range(n):
         nx, ny = x + dt * vx, y + dt * vy
         nyaw = yaw + dt * omega
         nyaw = (nyaw + math.pi) % (2.0 * math.pi) - math.pi
-        if not pose_is_valid(nx, ny, nyaw, body, verts, counts, aabbs, circles, bounds):
+        if not _valid_into(world, nx, ny, nyaw, body, verts, counts, aabbs, circles, bounds):
             return x, y, yaw, k, True
         x, y, yaw = nx, ny, nyaw
     return x, y, yaw, n, False

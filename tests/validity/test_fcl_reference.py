@@ -18,8 +18,9 @@ from feeders.feeder import build_feeder
 from feeders.part import Peg
 from feeders.scene import Scene
 from feeders.shapes import Obstacles
-from validity.fcl_reference import FCL_TOLERANCE_BAND, FclScene, cross_check_poses
+from validity.fcl_reference import FCL_TOLERANCE_BAND, FclScene
 from validity.geometric import GeometricLevel
+from validity.pose_samples import cross_check_poses
 
 N_POSES = 6000
 

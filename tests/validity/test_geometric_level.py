@@ -21,9 +21,9 @@ from test_geometry_kernel import PART, free_scene, part_polygons, shapely_refere
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
 from feeders.scene import InputSet, Scene
-from validity.fcl_reference import cross_check_poses
 from validity.geometric import DEFAULT_STEP, GeometricLevel, propagate_increments
 from validity.geometry_kernel import penetrates, pose_vertices
+from validity.pose_samples import cross_check_poses
 
 NO_DISCS = np.zeros((0, 3))
 AREA_TOL = 1e-12  # shapely intersection area counted as contact, not overlap (length^2)

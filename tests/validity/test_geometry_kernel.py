@@ -28,7 +28,6 @@ from feeders.halton import halton_designs
 from feeders.part import Peg
 from feeders.scene import Goal, Scene
 from feeders.shapes import Obstacles, convex_pieces
-from validity.fcl_reference import cross_check_poses
 from validity.geometric import GeometricLevel
 from validity.geometry_kernel import (
     clearance_at_pose,
@@ -36,6 +35,7 @@ from validity.geometry_kernel import (
     penetrates,
     pose_vertices,
 )
+from validity.pose_samples import cross_check_poses
 from validity.scene_arrays import SceneArrays
 
 BAND = 1e-9  # |signed distance| below which a pose counts as touching and is not compared
