@@ -65,25 +65,41 @@ class Goal:
 
 @dataclass(frozen=True)
 class InputSet:
-    """The bounded input set U of the geometric and kinematic levels (Eqs. 8-9).
+    """The bounded input sets of the levels (Eqs. 7-9).
 
-    Pose-increment rates: ``|vx|, |vy| <= max_speed`` (length/s) and ``|omega| <= max_turn``
-    (rad/s).
+    Geometric and kinematic levels: pose-increment rates ``|vx|, |vy| <= max_speed``
+    (length/s) and ``|omega| <= max_turn`` (rad/s). Dynamic level: an external wrench on the
+    part with ``|fx|, |fy| <= max_force`` (mass length/s^2) and ``|tau| <= max_torque``; zero
+    makes that component passive (a zero-width control range).
     """
 
     max_speed: float = 1.0
     max_turn: float = 1.0
+    max_force: float = 2.0
+    max_torque: float = 0.5
 
     def __post_init__(self) -> None:
-        for name in ("max_speed", "max_turn"):
+        for name, low in (("max_speed", 0.0), ("max_turn", 0.0)):
             value = getattr(self, name)
-            if not (math.isfinite(value) and 0.0 < value <= 1e3):
+            if not (math.isfinite(value) and low < value <= 1e3):
                 raise ValueError(
                     f"inputs.{name} = {value!r} is outside the allowed range (0, 1000]"
                 )
+        for name in ("max_force", "max_torque"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and 0.0 <= value <= 1e3):
+                raise ValueError(
+                    f"inputs.{name} = {value!r} is outside the allowed range [0, 1000]"
+                )
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """U of the geometric and kinematic levels: (vx, vy, omega)."""
         high = np.array([self.max_speed, self.max_speed, self.max_turn])
+        return -high, high
+
+    def wrench_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """U of the dynamic level: (fx, fy, tau)."""
+        high = np.array([self.max_force, self.max_force, self.max_torque])
         return -high, high
 
 

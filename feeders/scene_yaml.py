@@ -7,7 +7,7 @@ Two kinds, chosen by which key is present::
     part: {length: 2.0, width: 1.0, mass: 1.0, heavy_fraction: 0.75}
     friction: 0.3
     gravity: [0.0, -9.81]
-    inputs: {max_speed: 1.0, max_turn: 1.0}
+    inputs: {max_speed: 1.0, max_turn: 1.0, max_force: 2.0, max_torque: 0.5}
 
     obstacles:                   # free-form: polygons (any simple polygon) and circles
       - polygon: [[-5, -1], [5, -1], [5, 0], [-5, 0]]
@@ -91,8 +91,9 @@ def _part(spec: Any) -> Peg:
 def _inputs(spec: Any) -> InputSet:
     if spec is None:
         return InputSet()
-    spec = _mapping(spec, "inputs", {"max_speed", "max_turn"})
-    args = {k: _number(v, f"inputs.{k}", 1e-9, 1e3) for k, v in spec.items()}
+    spec = _mapping(spec, "inputs", {"max_speed", "max_turn", "max_force", "max_torque"})
+    low = {"max_speed": 1e-9, "max_turn": 1e-9, "max_force": 0.0, "max_torque": 0.0}
+    args = {k: _number(v, f"inputs.{k}", low[k], 1e3) for k, v in spec.items()}
     return InputSet(**args)
 
 

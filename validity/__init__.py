@@ -6,9 +6,10 @@ Choose one by name from ``LEVELS``.
 
 from __future__ import annotations
 
+from validity.dynamic import DynamicLevel
 from validity.geometric import GeometricLevel
 
-LEVELS = {"geometric": GeometricLevel}
+LEVELS = {"geometric": GeometricLevel, "dynamic": DynamicLevel}
 
 
 def make_level(name: str, scene, **options):

@@ -1,0 +1,223 @@
+"""The dynamic level (paper Eq. 7): rigid-body dynamics with Coulomb friction and gravity.
+
+State: pose and velocity ``(x, y, theta, vx, vy, omega)`` of the part's centre of mass. Input:
+a constant external wrench ``(fx, fy, tau)`` from the scene's bounded set (zero bounds make
+the part passive). Motion: Stewart-Trinkle time stepping at step ``h``
+(:mod:`validity.stewart_trinkle`), compiled as one loop per propagation or trajectory.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from feeders.scene import Scene
+from validity.geometry_kernel import clearance_at_pose
+from validity.scene_arrays import SceneArrays
+from validity.stewart_trinkle import (
+    END_REASONS,
+    SUMMARY_FIELDS,
+    TELEMETRY_COLUMNS,
+    simulate_kernel,
+)
+
+DEFAULT_STEP = 1e-3  # h (s): first-order error a T h / 2 (about 1 mm over 1 s of sliding)
+DEFAULT_MARGIN = 0.005  # contacts closer than this (+ 2 h |speed|) enter the LCP (length)
+PUSH_CAP = 0.5  # largest speed (length/s) at which psi_n / h pushes out a penetration
+VELOCITY_LIMIT = 20.0  # |vx|, |vy| (length/s) and |omega| (rad/s) of a valid state
+PENETRATION_TOLERANCE = 0.01  # deepest overlap (length) a valid dynamic state may have
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """A simulated run: states at ``times`` (rows x, y, theta, vx, vy, omega), per-step
+    telemetry (columns ``TELEMETRY_COLUMNS``), totals, and why it ended (``END_REASONS``)."""
+
+    times: np.ndarray = field(repr=False)
+    states: np.ndarray = field(repr=False)
+    telemetry: np.ndarray = field(repr=False)
+    summary: dict
+    end: str
+    h: float
+    mass: float
+    inertia: float
+    gravity: tuple[float, float]
+
+    @property
+    def final(self) -> np.ndarray:
+        return self.states[-1]
+
+    @property
+    def duration(self) -> float:
+        return float(self.times[-1])
+
+    def energy(self) -> np.ndarray:
+        """Kinetic plus gravitational potential energy at every state (mass length^2/s^2)."""
+        s = self.states
+        kinetic = 0.5 * self.mass * (s[:, 3] ** 2 + s[:, 4] ** 2) + 0.5 * self.inertia * s[:, 5] ** 2
+        potential = -self.mass * (self.gravity[0] * s[:, 0] + self.gravity[1] * s[:, 1])
+        return kinetic + potential
+
+    def energy_rise(self) -> float:
+        """Largest rise of the energy above its starting value (0 when it never rises)."""
+        e = self.energy()
+        return float(max(0.0, np.max(e - e[0])))
+
+
+class DynamicLevel:
+    """Eq. 7 on a scene: validity, clearance, propagation and simulation of (pose, velocity)."""
+
+    name = "dynamic"
+    state_dim = 6
+    control_dim = 3
+    velocity_limit = VELOCITY_LIMIT
+
+    def __init__(
+        self,
+        scene: Scene,
+        step: float = DEFAULT_STEP,
+        margin: float = DEFAULT_MARGIN,
+        push_cap: float = PUSH_CAP,
+        skip_free: bool = True,
+        penetration_tolerance: float = PENETRATION_TOLERANCE,
+    ):
+        for label, value, low, high in (
+            ("step h", step, 1e-6, 0.1),
+            ("contact margin", margin, 0.0, 1.0),
+            ("push-out cap", push_cap, 1e-6, 1e3),
+            ("penetration tolerance", penetration_tolerance, 0.0, 1.0),
+        ):
+            if not (math.isfinite(value) and low <= value <= high):
+                raise ValueError(
+                    f"dynamic {label} = {value!r} is outside the allowed range [{low}, {high}]"
+                )
+        self.scene = scene
+        self.step = float(step)
+        self.margin = float(margin)
+        self.push_cap = float(push_cap)
+        self.skip_free = bool(skip_free)
+        self.penetration_tolerance = float(penetration_tolerance)
+        self.arrays = SceneArrays.from_scene(scene)
+        part = scene.part
+        self.mass, self.inertia = part.mass, part.inertia
+        self.gravity = np.asarray(scene.gravity, dtype=np.float64)
+        self.friction = float(scene.friction)
+
+    def control_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.scene.inputs.wrench_bounds()
+
+    def state_of_pose(self, pose: Sequence[float]) -> tuple[float, ...]:
+        """The part at rest in ``pose``."""
+        return (float(pose[0]), float(pose[1]), float(pose[2]), 0.0, 0.0, 0.0)
+
+    def clearance(self, state: Sequence[float]) -> float:
+        """Smallest signed distance to the obstacles (negative: penetration depth)."""
+        a = self.arrays
+        return float(
+            clearance_at_pose(
+                a.body, state[0], state[1], state[2], a.verts, a.counts, a.aabbs, a.circles, -np.inf
+            )
+        )
+
+    def is_valid(self, state: Sequence[float]) -> bool:
+        """Centre of mass in bounds, speeds within ``velocity_limit`` and penetration within
+        ``penetration_tolerance`` (time stepping resolves contact to a small overlap)."""
+        b = self.arrays.bounds
+        if not (b[0] <= state[0] <= b[1] and b[2] <= state[1] <= b[3]):
+            return False
+        if max(abs(state[3]), abs(state[4]), abs(state[5])) > self.velocity_limit:
+            return False
+        a = self.arrays
+        tol = -self.penetration_tolerance
+        return bool(
+            clearance_at_pose(
+                a.body, state[0], state[1], state[2], a.verts, a.counts, a.aabbs, a.circles, tol
+            )
+            >= tol
+        )
+
+    def _run(
+        self,
+        state: Sequence[float],
+        wrench: Sequence[float],
+        duration: float,
+        y_stop: float,
+        rest_speed: float,
+        rest_time: float,
+        record: bool,
+    ):
+        n = max(1, math.ceil(duration / self.step - 1e-9))
+        a = self.arrays
+        out = np.empty(6)
+        traj = np.empty((n + 1 if record else 0, 6))
+        tele = np.empty((n if record else 0, len(TELEMETRY_COLUMNS)))
+        summary = np.zeros(len(SUMMARY_FIELDS))
+        rest_steps = math.ceil(rest_time / self.step) if rest_speed > 0.0 else 0
+        steps, reason = simulate_kernel(
+            np.asarray(state, dtype=np.float64)[:6].copy(),
+            np.asarray(wrench, dtype=np.float64),
+            n,
+            self.step,
+            self.mass,
+            self.inertia,
+            self.gravity,
+            self.friction,
+            self.margin,
+            self.push_cap,
+            self.skip_free,
+            y_stop,
+            rest_speed,
+            rest_steps,
+            a.body,
+            a.verts,
+            a.counts,
+            a.aabbs,
+            a.circles,
+            a.bounds,
+            out,
+            traj,
+            tele,
+            summary,
+        )
+        return out, steps, reason, traj[: steps + 1], tele[:steps], summary
+
+    def propagate(
+        self, state: Sequence[float], control: Sequence[float], duration: float
+    ) -> tuple[float, ...]:
+        """The state after holding the wrench ``control`` for ``duration`` seconds (steps of h;
+        stops early only if the centre of mass leaves the bounds)."""
+        out, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=False)
+        out[2] = (out[2] + math.pi) % (2.0 * math.pi) - math.pi
+        return tuple(float(v) for v in out)
+
+    def simulate(
+        self,
+        state: Sequence[float],
+        wrench: Sequence[float] = (0.0, 0.0, 0.0),
+        duration: float = 10.0,
+        y_stop: float = -np.inf,
+        rest_speed: float = 0.0,
+        rest_time: float = 0.2,
+    ) -> Trajectory:
+        """Every state of a run of up to ``duration`` s, ending early when the centre of mass
+        drops below ``y_stop`` or the part stays slower than ``rest_speed`` (every point,
+        length/s) for ``rest_time`` s (Eq. 10's T: the part comes to rest)."""
+        if not (math.isfinite(duration) and 0.0 < duration <= 3600.0):
+            raise ValueError(f"duration = {duration!r} is outside the allowed range (0, 3600] s")
+        _, steps, reason, traj, tele, summary = self._run(
+            state, wrench, duration, y_stop, rest_speed, rest_time, record=True
+        )
+        return Trajectory(
+            times=np.arange(steps + 1) * self.step,
+            states=traj,
+            telemetry=tele,
+            summary={k: float(v) for k, v in zip(SUMMARY_FIELDS, summary, strict=True)},
+            end=END_REASONS[reason],
+            h=self.step,
+            mass=self.mass,
+            inertia=self.inertia,
+            gravity=(float(self.gravity[0]), float(self.gravity[1])),
+        )

@@ -1,0 +1,334 @@
+"""Stewart-Trinkle time stepping of a rigid planar part among static obstacles (paper Eq. 7).
+
+Generalised coordinates q = (x, y, theta) of the centre of mass, velocity v = (vx, vy, omega),
+mass matrix M = diag(m, m, I). Each step of length h:
+
+1. find the contacts within a margin (:func:`validity.contact_kernel.find_contacts`): gaps
+   psi_n, normals n, tangents t and points p, giving the Jacobian columns
+   W_n = (n, r x n) and W_f = (+t, r x t), (-t, -(r x t)) with r = p - q_xy (two friction
+   directions per contact: the planar friction cone is exact);
+2. solve LCP(B, b) of Eq. 7 for z = (p_n, p_f, s):
+   B = [[W_n' M^-1 W_n, W_n' M^-1 W_f, 0], [W_f' M^-1 W_n, W_f' M^-1 W_f, E], [U, -E', 0]],
+   b = (W_n' v* + max(psi_n / h, -c), W_f' v*, 0) with v* = v + h M^-1 (m g + u),
+   where c caps the velocity at which an existing penetration is pushed out;
+3. v <- v* + M^-1 (W_n p_n + W_f p_f), q <- q + h v (no restitution, as in the paper).
+
+What a step does not need it skips: no contact within the margin means no LCP (a free step of
+the same update), and then as many following steps as provably cannot bring a contact within
+the margin skip the contact search too (the bound: the clearance against the farthest any
+point of the part can move); mu = 0 drops the friction unknowns (an LCP of size n_c instead
+of 4 n_c); the broad phase of the contact search bounds far obstacles by their boxes.
+
+A step whose LCP fails even after the solver's regularisation retry falls back to the
+frictionless LCP of the same contacts, and if that fails too, to no contact impulse; either
+is recorded in the telemetry, never raised. The whole loop is one compiled call.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from validity.contact_kernel import MAX_CONTACTS, find_contacts
+from validity.geometry_kernel import pose_vertices
+from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_lcp
+
+# Per-step telemetry columns.
+T_CONTACTS, T_STATUS, T_PIVOTS, T_ALPHA, T_RESIDUAL, T_PENETRATION, T_SIZE = range(7)
+TELEMETRY_COLUMNS = (
+    "contacts",
+    "lcp_status",
+    "pivots",
+    "regularisation",
+    "residual",
+    "penetration",
+    "lcp_size",
+)
+NO_LCP = -1  # T_STATUS of a step without contacts
+FALLBACK_FRICTIONLESS = 10  # T_STATUS: the friction LCP failed, the frictionless one held
+FAILED = 11  # T_STATUS: no LCP could be solved; the step took no contact impulse
+
+# Summary entries.
+(
+    S_STEPS,
+    S_SEARCHES,
+    S_LCPS,
+    S_REGULARISED,
+    S_FALLBACKS,
+    S_FAILURES,
+    S_MAX_PIVOTS,
+    S_MAX_ALPHA,
+    S_MAX_RESIDUAL,
+    S_MAX_PENETRATION,
+    S_CONTACT_STEPS,
+) = range(11)
+SUMMARY_FIELDS = (
+    "steps",
+    "contact_searches",
+    "lcp_solves",
+    "regularised",
+    "frictionless_fallbacks",
+    "failures",
+    "max_pivots",
+    "max_regularisation",
+    "max_residual",
+    "max_penetration",
+    "contact_steps",
+)
+
+# Why a run ended.
+RAN_FULL, CROSSED, AT_REST, LEFT_BOUNDS = range(4)
+END_REASONS = ("duration", "crossed", "at_rest", "left_bounds")
+
+
+@njit(cache=True)
+def _radius(body: np.ndarray) -> float:
+    r = 0.0
+    for i in range(body.shape[0]):
+        r = max(r, math.hypot(body[i, 0], body[i, 1]))
+    return r
+
+
+@njit(cache=True)
+def _jacobians(contacts: np.ndarray, nc: int, x: float, y: float, wn: np.ndarray, wt: np.ndarray):
+    """Columns W_n (3, nc) and the tangent columns W_t (3, nc); W_f is (+W_t, -W_t)."""
+    for i in range(nc):
+        nx, ny = contacts[i, 1], contacts[i, 2]
+        rx, ry = contacts[i, 3] - x, contacts[i, 4] - y
+        tx, ty = -ny, nx
+        wn[0, i], wn[1, i], wn[2, i] = nx, ny, rx * ny - ry * nx
+        wt[0, i], wt[1, i], wt[2, i] = tx, ty, rx * ty - ry * tx
+
+
+@njit(cache=True)
+def _frictionless_lcp(wn, nc, minv, bias, vstar, B, b):
+    """B = W_n' M^-1 W_n, b = W_n' v* + bias (size n_c)."""
+    for i in range(nc):
+        b[i] = bias[i] + wn[0, i] * vstar[0] + wn[1, i] * vstar[1] + wn[2, i] * vstar[2]
+        for j in range(nc):
+            B[i, j] = (
+                wn[0, i] * minv[0] * wn[0, j]
+                + wn[1, i] * minv[1] * wn[1, j]
+                + wn[2, i] * minv[2] * wn[2, j]
+            )
+
+
+@njit(cache=True)
+def _friction_lcp(wn, wt, nc, mu, minv, bias, vstar, B, b):
+    """B and b of Eq. 7 for n_c contacts (size 4 n_c): unknowns p_n, p_f (+t, -t), s."""
+    m = 3 * nc
+    cols = np.empty((3, m))  # [W_n | W_f]
+    for i in range(nc):
+        for k in range(3):
+            cols[k, i] = wn[k, i]
+            cols[k, nc + 2 * i] = wt[k, i]
+            cols[k, nc + 2 * i + 1] = -wt[k, i]
+    n = 4 * nc
+    for i in range(n):
+        for j in range(n):
+            B[i, j] = 0.0
+    for i in range(m):
+        b[i] = cols[0, i] * vstar[0] + cols[1, i] * vstar[1] + cols[2, i] * vstar[2]
+        for j in range(m):
+            B[i, j] = (
+                cols[0, i] * minv[0] * cols[0, j]
+                + cols[1, i] * minv[1] * cols[1, j]
+                + cols[2, i] * minv[2] * cols[2, j]
+            )
+    for i in range(nc):
+        b[i] += bias[i]
+        b[m + i] = 0.0
+        for s in range(2):
+            B[nc + 2 * i + s, m + i] = 1.0  # E
+            B[m + i, nc + 2 * i + s] = -1.0  # -E'
+        B[m + i, i] = mu  # U
+
+
+@njit(cache=True)
+def _apply(cols_w, z, offset, sign, count, minv, v):
+    """v += M^-1 sum_i sign * W[:, i] z[offset + i * stride] (helper for the impulse)."""
+    for i in range(count):
+        zi = z[offset + i] * sign
+        v[0] += minv[0] * cols_w[0, i] * zi
+        v[1] += minv[1] * cols_w[1, i] * zi
+        v[2] += minv[2] * cols_w[2, i] * zi
+
+
+@njit(cache=True)
+def _free_steps_bound(clear, margin0, h, speed, accel, radius, remaining):
+    """How many free steps cannot bring any contact within the margin (at least 0).
+
+    After j free steps no point of the part has moved more than
+    j h (|v| + R|w|) + h^2 (|a| + R|alpha|) j (j + 1) / 2, and the margin then is at most
+    margin0 + 2 h (speed + j h accel); both grow with j, so the first j that fails ends it.
+    """
+    j = 0
+    while j < remaining:
+        k = j + 1
+        moved = k * h * speed + h * h * accel * k * (k + 1) / 2.0
+        margin = margin0 + 2.0 * h * (speed + k * h * accel)
+        if moved + margin >= clear:
+            break
+        j = k
+    return j
+
+
+@njit(cache=True)
+def simulate_kernel(
+    state0: np.ndarray,
+    wrench: np.ndarray,
+    n_steps: int,
+    h: float,
+    mass: float,
+    inertia: float,
+    gravity: np.ndarray,
+    mu: float,
+    margin0: float,
+    push_cap: float,
+    skip_free: bool,
+    y_stop: float,
+    rest_speed: float,
+    rest_steps: int,
+    body: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    bounds: np.ndarray,
+    out_state: np.ndarray,
+    traj: np.ndarray,
+    tele: np.ndarray,
+    summary: np.ndarray,
+) -> tuple[int, int]:
+    """Step Eq. 7 up to ``n_steps`` times from ``state0 = (x, y, theta, vx, vy, omega)``.
+
+    ``wrench = (fx, fy, tau)`` is held constant. The run ends early when the centre of mass
+    drops below ``y_stop``, when the speed of every point of the part (|v| + R|omega|) stays
+    below ``rest_speed`` for ``rest_steps`` steps (0 disables), or when the centre of mass
+    leaves ``bounds``. Writes the final state to ``out_state``, every state to ``traj``
+    (rows 0..steps) and per-step telemetry to ``tele`` when they have rows, and totals to
+    ``summary``. Returns ``(steps taken, end reason)``.
+    """
+    record = traj.shape[0] > 0
+    telemetry = tele.shape[0] > 0
+    for i in range(summary.shape[0]):
+        summary[i] = 0.0
+    x, y, th = state0[0], state0[1], state0[2]
+    vx, vy, om = state0[3], state0[4], state0[5]
+    minv = np.array([1.0 / mass, 1.0 / mass, 1.0 / inertia])
+    ax, ay = gravity[0] + wrench[0] / mass, gravity[1] + wrench[1] / mass
+    alpha = wrench[2] / inertia
+    radius = _radius(body)
+    accel = math.hypot(ax, ay) + radius * abs(alpha)
+
+    world = np.empty_like(body)
+    contacts = np.empty((MAX_CONTACTS, 5))
+    wn = np.empty((3, MAX_CONTACTS))
+    wt = np.empty((3, MAX_CONTACTS))
+    nmax = 4 * MAX_CONTACTS
+    B = np.zeros((nmax, nmax))
+    b = np.zeros(nmax)
+    z = np.zeros(nmax)
+    bias = np.empty(MAX_CONTACTS)
+    vstar = np.empty(3)
+    v = np.empty(3)
+
+    if record:
+        traj[0, 0], traj[0, 1], traj[0, 2] = x, y, th
+        traj[0, 3], traj[0, 4], traj[0, 5] = vx, vy, om
+    free_left = 0
+    still = 0
+    reason = RAN_FULL
+    steps = 0
+    for step in range(n_steps):
+        vstar[0], vstar[1], vstar[2] = vx + h * ax, vy + h * ay, om + h * alpha
+        status, pivots, reg, residual, depth, nc, size = NO_LCP, 0, 0.0, 0.0, 0.0, 0, 0
+        if free_left > 0:
+            free_left -= 1
+            vx, vy, om = vstar[0], vstar[1], vstar[2]
+        else:
+            speed = math.hypot(vx, vy) + radius * abs(om)
+            margin = margin0 + 2.0 * h * speed
+            pose_vertices(body, x, y, th, world)
+            nc, clear = find_contacts(world, verts, counts, aabbs, circles, margin, contacts)
+            summary[S_SEARCHES] += 1
+            if nc == 0:
+                vx, vy, om = vstar[0], vstar[1], vstar[2]
+                if skip_free:
+                    free_left = _free_steps_bound(
+                        clear, margin0, h, speed, accel, radius, n_steps - step - 1
+                    )
+            else:
+                summary[S_CONTACT_STEPS] += 1
+                _jacobians(contacts, nc, x, y, wn, wt)
+                for i in range(nc):
+                    depth = max(depth, -contacts[i, 0])
+                    bias[i] = max(contacts[i, 0] / h, -push_cap)
+                v[0], v[1], v[2] = vstar[0], vstar[1], vstar[2]
+                frictional = mu > 0.0
+                size = 4 * nc if frictional else nc
+                if frictional:
+                    _friction_lcp(wn, wt, nc, mu, minv, bias, vstar, B, b)
+                else:
+                    _frictionless_lcp(wn, nc, minv, bias, vstar, B, b)
+                status, pivots, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
+                summary[S_LCPS] += 1
+                if status != LCP_SOLVED and status != LCP_REGULARISED and frictional:
+                    size = nc
+                    _frictionless_lcp(wn, nc, minv, bias, vstar, B, b)
+                    st2, pv2, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
+                    pivots += pv2
+                    frictional = False
+                    status = FALLBACK_FRICTIONLESS if st2 <= LCP_REGULARISED else FAILED
+                elif status != LCP_SOLVED and status != LCP_REGULARISED:
+                    status = FAILED
+                if status == FAILED:
+                    summary[S_FAILURES] += 1
+                else:
+                    if status == FALLBACK_FRICTIONLESS:
+                        summary[S_FALLBACKS] += 1
+                    elif status == LCP_REGULARISED:
+                        summary[S_REGULARISED] += 1
+                    _apply(wn, z, 0, 1.0, nc, minv, v)
+                    if frictional:
+                        for i in range(nc):
+                            zt = z[nc + 2 * i] - z[nc + 2 * i + 1]
+                            v[0] += minv[0] * wt[0, i] * zt
+                            v[1] += minv[1] * wt[1, i] * zt
+                            v[2] += minv[2] * wt[2, i] * zt
+                vx, vy, om = v[0], v[1], v[2]
+                summary[S_MAX_PIVOTS] = max(summary[S_MAX_PIVOTS], pivots)
+                summary[S_MAX_ALPHA] = max(summary[S_MAX_ALPHA], reg)
+                summary[S_MAX_RESIDUAL] = max(summary[S_MAX_RESIDUAL], residual)
+                summary[S_MAX_PENETRATION] = max(summary[S_MAX_PENETRATION], depth)
+        x, y, th = x + h * vx, y + h * vy, th + h * om
+        steps = step + 1
+        if record:
+            traj[steps, 0], traj[steps, 1], traj[steps, 2] = x, y, th
+            traj[steps, 3], traj[steps, 4], traj[steps, 5] = vx, vy, om
+        if telemetry:
+            row = tele[step]
+            row[T_CONTACTS], row[T_STATUS], row[T_PIVOTS] = nc, status, pivots
+            row[T_ALPHA], row[T_RESIDUAL], row[T_PENETRATION], row[T_SIZE] = (
+                reg,
+                residual,
+                depth,
+                size,
+            )
+        if y < y_stop:
+            reason = CROSSED
+            break
+        if not (bounds[0] <= x <= bounds[1] and bounds[2] <= y <= bounds[3]):
+            reason = LEFT_BOUNDS
+            break
+        if rest_steps > 0:
+            still = still + 1 if math.hypot(vx, vy) + radius * abs(om) < rest_speed else 0
+            if still >= rest_steps:
+                reason = AT_REST
+                break
+    summary[S_STEPS] = steps
+    out_state[0], out_state[1], out_state[2] = x, y, th
+    out_state[3], out_state[4], out_state[5] = vx, vy, om
+    return steps, reason
