@@ -13,11 +13,11 @@ from ompl import control as oc
 
 from feeders.scene import Scene
 
-MAX_SPEED = 20.0  # bounds of the velocity subspace (length/s, rad/s) of SE2 x R^3
-
-
-def make_state_space(scene: Scene, state_dim: int) -> ob.StateSpace:
-    """SE2 bounded by the scene (dim 3) or SE2 x R^3 (dim 6)."""
+def make_state_space(
+    scene: Scene, state_dim: int, velocity_limit: float | None = None
+) -> ob.StateSpace:
+    """SE2 bounded by the scene (dim 3) or SE2 x R^3 (dim 6, velocities within
+    +-``velocity_limit``, the level's own limit)."""
     se2 = ob.SE2StateSpace()
     bounds = ob.RealVectorBounds(2)
     x_min, x_max, y_min, y_max = scene.bounds
@@ -30,10 +30,12 @@ def make_state_space(scene: Scene, state_dim: int) -> ob.StateSpace:
         return se2
     if state_dim != 6:
         raise ValueError(f"no OMPL state space for a {state_dim}-dimensional state")
+    if velocity_limit is None or not velocity_limit > 0.0:
+        raise ValueError("a 6-dimensional state space needs the level's velocity_limit > 0")
     vel = ob.RealVectorStateSpace(3)
     vb = ob.RealVectorBounds(3)
-    vb.setLow(-MAX_SPEED)
-    vb.setHigh(MAX_SPEED)
+    vb.setLow(-velocity_limit)
+    vb.setHigh(velocity_limit)
     vel.setBounds(vb)
     space = ob.CompoundStateSpace()
     space.addSubspace(se2, 1.0)
