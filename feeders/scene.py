@@ -75,8 +75,8 @@ class InputSet:
 
     max_speed: float = 1.0
     max_turn: float = 1.0
-    max_force: float = 2.0
-    max_torque: float = 0.5
+    max_force: float = 5.0  # half the default peg's weight: help, not a lift
+    max_torque: float = 1.0
 
     def __post_init__(self) -> None:
         for name, low in (("max_speed", 0.0), ("max_turn", 0.0)):

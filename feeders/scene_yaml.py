@@ -7,7 +7,7 @@ Two kinds, chosen by which key is present::
     part: {length: 2.0, width: 1.0, mass: 1.0, heavy_fraction: 0.75}
     friction: 0.3
     gravity: [0.0, -9.81]
-    inputs: {max_speed: 1.0, max_turn: 1.0, max_force: 2.0, max_torque: 0.5}
+    inputs: {max_speed: 1.0, max_turn: 1.0, max_force: 5.0, max_torque: 1.0}
 
     obstacles:                   # free-form: polygons (any simple polygon) and circles
       - polygon: [[-5, -1], [5, -1], [5, 0], [-5, 0]]

@@ -92,17 +92,27 @@ class PlanResult:
 
 
 def fine_path(
-    level, path: np.ndarray, controls: np.ndarray, durations: np.ndarray, step: float
+    level,
+    path: np.ndarray,
+    controls: np.ndarray,
+    durations: np.ndarray,
+    piece: float,
 ) -> np.ndarray:
-    """Re-propagate a control path in pieces of at most ``step`` seconds: the states between."""
+    """Re-propagate a control path as OMPL did, in pieces of ``piece`` seconds (the
+    propagation step), each split into equal sub-pieces of at most the level's step ``h``:
+    every state the level visits. A sub-piece has the same length as the level's own step
+    inside one piece, so the states at piece ends are the planner's own states, not a
+    re-integration that a chaotic contact trajectory would amplify."""
     if len(path) == 0:
         return np.zeros((0, level.state_dim))
+    split = max(1, math.ceil(piece / level.step - 1e-9))
+    sub = piece / split
     states = [tuple(path[0])]
     for i in range(len(controls)):
         state = tuple(path[i])
-        n = max(1, math.ceil(durations[i] / step - 1e-9))
-        for _ in range(n):
-            state = level.propagate(state, controls[i], durations[i] / n)
+        pieces = max(1, round(durations[i] / piece))
+        for _ in range(pieces * split):
+            state = level.propagate(state, controls[i], sub)
             states.append(tuple(state))
     return np.array(states)
 
@@ -196,7 +206,7 @@ def plan(
         path=path,
         controls=controls,
         durations=durations,
-        fine_path=fine_path(level, path, controls, durations, level.step),
+        fine_path=fine_path(level, path, controls, durations, settings.step),
         tree_vertices=vertices,
         tree_edges=np.array(edges, dtype=np.int64).reshape(-1, 2),
     )

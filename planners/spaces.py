@@ -13,6 +13,7 @@ from ompl import control as oc
 
 from feeders.scene import Scene
 
+
 def make_state_space(
     scene: Scene, state_dim: int, velocity_limit: float | None = None
 ) -> ob.StateSpace:

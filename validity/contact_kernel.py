@@ -66,7 +66,7 @@ def point_polygon_feature(
 
 @njit(cache=True)
 def _add(contacts: np.ndarray, nc: int, gap, nx, ny, px, py) -> int:
-    """Append a contact row (gap, nx, ny, px, py); when full, replace the one with the largest gap."""
+    """Append a row (gap, nx, ny, px, py); when full, it replaces the row with the largest gap."""
     k = nc
     if nc == contacts.shape[0]:
         k = 0

@@ -57,7 +57,8 @@ class Trajectory:
     def energy(self) -> np.ndarray:
         """Kinetic plus gravitational potential energy at every state (mass length^2/s^2)."""
         s = self.states
-        kinetic = 0.5 * self.mass * (s[:, 3] ** 2 + s[:, 4] ** 2) + 0.5 * self.inertia * s[:, 5] ** 2
+        kinetic = 0.5 * self.mass * (s[:, 3] ** 2 + s[:, 4] ** 2)
+        kinetic += 0.5 * self.inertia * s[:, 5] ** 2
         potential = -self.mass * (self.gravity[0] * s[:, 0] + self.gravity[1] * s[:, 1])
         return kinetic + potential
 
@@ -150,17 +151,18 @@ class DynamicLevel:
         record: bool,
     ):
         n = max(1, math.ceil(duration / self.step - 1e-9))
+        h = duration / n  # at most the level's step, and n of them make exactly `duration`
         a = self.arrays
         out = np.empty(6)
         traj = np.empty((n + 1 if record else 0, 6))
         tele = np.empty((n if record else 0, len(TELEMETRY_COLUMNS)))
         summary = np.zeros(len(SUMMARY_FIELDS))
-        rest_steps = math.ceil(rest_time / self.step) if rest_speed > 0.0 else 0
+        rest_steps = math.ceil(rest_time / h) if rest_speed > 0.0 else 0
         steps, reason = simulate_kernel(
             np.asarray(state, dtype=np.float64)[:6].copy(),
             np.asarray(wrench, dtype=np.float64),
             n,
-            self.step,
+            h,
             self.mass,
             self.inertia,
             self.gravity,
@@ -182,7 +184,7 @@ class DynamicLevel:
             tele,
             summary,
         )
-        return out, steps, reason, traj[: steps + 1], tele[:steps], summary
+        return out, steps, reason, traj[: steps + 1], tele[:steps], summary, h
 
     def propagate(
         self, state: Sequence[float], control: Sequence[float], duration: float
@@ -190,7 +192,8 @@ class DynamicLevel:
         """The state after holding the wrench ``control`` for ``duration`` seconds (steps of h;
         stops early only if the centre of mass leaves the bounds)."""
         out, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=False)
-        out[2] = (out[2] + math.pi) % (2.0 * math.pi) - math.pi
+        if not -math.pi <= out[2] < math.pi:  # wrap only when needed: chained calls stay exact
+            out[2] = (out[2] + math.pi) % (2.0 * math.pi) - math.pi
         return tuple(float(v) for v in out)
 
     def simulate(
@@ -207,16 +210,16 @@ class DynamicLevel:
         length/s) for ``rest_time`` s (Eq. 10's T: the part comes to rest)."""
         if not (math.isfinite(duration) and 0.0 < duration <= 3600.0):
             raise ValueError(f"duration = {duration!r} is outside the allowed range (0, 3600] s")
-        _, steps, reason, traj, tele, summary = self._run(
+        _, steps, reason, traj, tele, summary, h = self._run(
             state, wrench, duration, y_stop, rest_speed, rest_time, record=True
         )
         return Trajectory(
-            times=np.arange(steps + 1) * self.step,
+            times=np.arange(steps + 1) * h,
             states=traj,
             telemetry=tele,
             summary={k: float(v) for k, v in zip(SUMMARY_FIELDS, summary, strict=True)},
             end=END_REASONS[reason],
-            h=self.step,
+            h=h,
             mass=self.mass,
             inertia=self.inertia,
             gravity=(float(self.gravity[0]), float(self.gravity[1])),

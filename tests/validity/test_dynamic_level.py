@@ -162,10 +162,9 @@ def test_passive_traversals_of_table3_never_overlap_beyond_tolerance() -> None:
     area stays below (penetration tolerance x part length), energy never rises."""
     scene = _table3()
     level = DynamicLevel(scene)
-    obstacles = [shapely.Polygon(p) for p in scene.obstacles.polygons] + [
+    pieces = [shapely.Polygon(p) for p in scene.obstacles.polygons] + [
         shapely.Point(c[0], c[1]).buffer(c[2], 64) for c in scene.obstacles.circles
-    ]
-    union = shapely.union_all(obstacles)
+    ]  # piece by piece: intersecting a union is not robust for a part sliding along a wall
     body = scene.part.body_vertices()
     for orientation in scene.starts:
         run = level.simulate(
@@ -180,7 +179,7 @@ def test_passive_traversals_of_table3_never_overlap_beyond_tolerance() -> None:
         for x, y, th in run.states[::10, :3]:
             c, s = math.cos(th), math.sin(th)
             world = body @ np.array([[c, s], [-s, c]]) + (x, y)
-            overlap = shapely.Polygon(world).intersection(union).area
+            overlap = sum(shapely.Polygon(world).intersection(p).area for p in pieces)
             assert overlap < level.penetration_tolerance * scene.part.length
 
 
