@@ -3,7 +3,8 @@
 ``partfeeder plan``: plan the part through a feeder (a paper preset, 12 values, or a YAML
 scene) with one level and one OMPL planner, for one or both entry orientations; prints a
 summary (or JSON) and writes a picture of the tree and path. ``partfeeder draw``: pictures of
-designs. ``partfeeder bench``: speed of the validity check, propagation and planning.
+designs. ``partfeeder simulate``: the passive drop of the part through a feeder with the dynamic
+level, per entry orientation. ``partfeeder bench``: speed of the levels and of planning.
 
 Exit status: 0 done (whether or not a plan was found: see the output), 2 bad input.
 """
@@ -62,6 +63,23 @@ def _parser() -> argparse.ArgumentParser:
     plan.add_argument("--json", action="store_true", help="print JSON instead of a table")
     plan.add_argument("--verbose", action="store_true", help="show OMPL's log")
 
+    sim = sub.add_parser(
+        "simulate", help="drop the part passively through a scene with the dynamic level"
+    )
+    scene_args(sim)
+    sim.add_argument(
+        "--orientation",
+        default="both",
+        help="both, or one start of the scene (feeder: heavy_leading, heavy_trailing)",
+    )
+    sim.add_argument("--step", type=float, default=1e-3, help="time step h (s)")
+    sim.add_argument("--time", type=float, default=10.0, help="longest simulated time (s)")
+    sim.add_argument(
+        "--out", type=Path, default=None, help="directory for the snapshot strip and animation"
+    )
+    sim.add_argument("--no-animation", action="store_true", help="write the strip only")
+    sim.add_argument("--json", action="store_true", help="print JSON instead of a table")
+
     draw = sub.add_parser("draw", help="draw designs (feeder, start poses, goal region)")
     scene_args(draw)
     draw.add_argument("--out", type=Path, required=True, help="PNG file to write")
@@ -106,6 +124,27 @@ def _load_scene(design: str | None, scene_file: Path | None):
         raise UsageError(f"degenerate design: {exc}") from None
 
 
+def _orientations(scene, choice: str) -> list[str]:
+    """``both`` (the feeder's two entries, or every start of a free-form scene) or one start."""
+    if choice == "both":
+        return [o for o in ORIENTATIONS if o in scene.starts] or list(scene.starts)
+    if choice in scene.starts:
+        return [choice]
+    raise UsageError(
+        f"--orientation '{choice}' is not a start of this scene; "
+        f"choose both or one of: {', '.join(scene.starts)}"
+    )
+
+
+def _out_dir(out: Path | None) -> Path | None:
+    if out is not None:
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UsageError(f"--out: cannot create directory '{out}': {exc.strerror}") from None
+    return out
+
+
 def _cmd_plan(args: argparse.Namespace) -> int:
     from experiments.plotting import plan_figure
     from planners.plan import plan
@@ -113,21 +152,8 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     if not (0.0 < args.time <= 3600.0):
         raise UsageError(f"--time = {args.time} is outside the allowed range (0, 3600] s")
     scene = _load_scene(args.design, args.scene)
-    if args.orientation == "both":
-        orientations = [o for o in ORIENTATIONS if o in scene.starts] or list(scene.starts)
-    elif args.orientation in scene.starts:
-        orientations = [args.orientation]
-    else:
-        raise UsageError(
-            f"--orientation '{args.orientation}' is not a start of this scene; "
-            f"choose both or one of: {', '.join(scene.starts)}"
-        )
-    out = args.out
-    if out is not None:
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UsageError(f"--out: cannot create directory '{out}': {exc.strerror}") from None
+    orientations = _orientations(scene, args.orientation)
+    out = _out_dir(args.out)
     results = [plan(scene, args.level, args.planner, o, args.time, args.seed) for o in orientations]
     figure = None
     if out is not None:
@@ -149,6 +175,52 @@ def _cmd_plan(args: argparse.Namespace) -> int:
         )
     if figure:
         print(f"picture: {figure}")
+    return 0
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from experiments.passive_drop import eq10_objective, passive_drop
+
+    if not (1e-6 <= args.step <= 0.1):
+        raise UsageError(f"--step = {args.step} is outside the allowed range [1e-06, 0.1] s")
+    if not (0.0 < args.time <= 3600.0):
+        raise UsageError(f"--time = {args.time} is outside the allowed range (0, 3600] s")
+    scene = _load_scene(args.design, args.scene)
+    orientations = _orientations(scene, args.orientation)
+    out = _out_dir(args.out)
+    results = [passive_drop(scene, o, step=args.step, t_max=args.time) for o in orientations]
+    files: list[str] = []
+    if out is not None:
+        from experiments.drop_plots import drop_animation, drop_strip
+
+        stem = f"drop_{scene.name}".replace(" ", "_")
+        files.append(str(drop_strip(scene, results, out / f"{stem}.png")))
+        if not args.no_animation:
+            files.append(str(drop_animation(scene, results, out / f"{stem}.gif")))
+        summaries = {"runs": [r.summary() for r in results]}
+        (out / f"{stem}.json").write_text(json.dumps(summaries, indent=2))
+        files.append(str(out / f"{stem}.json"))
+    objective = eq10_objective(results)
+    if args.json:
+        report = {"runs": [r.summary() for r in results], "eq10_objective": objective}
+        print(json.dumps({**report, "files": files}, indent=2))
+        return 0
+    print(
+        f"{scene.name} | dynamic level, h = {args.step:g} s | passive drop, up to {args.time:g} s"
+    )
+    print(
+        f"{'orientation':<16}{'goal':>6}{'end':>12}{'T (s)':>8}{'overlap':>10}"
+        f"{'E rise':>10}{'LCP fail':>10}{'wall (ms)':>11}"
+    )
+    for r in results:
+        print(
+            f"{r.orientation:<16}{'yes' if r.success else 'no':>6}{r.end:>12}{r.T:>8.3f}"
+            f"{r.max_penetration:>10.1e}{r.energy_rise:>10.1e}{r.lcp_failures:>10d}"
+            f"{r.wall_time * 1e3:>11.1f}"
+        )
+    print(f"Eq. 10 objective (w = 5): {objective:.3f}")
+    for f in files:
+        print(f"wrote: {f}")
     return 0
 
 
@@ -205,6 +277,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 COMMANDS = {
     "plan": _cmd_plan,
+    "simulate": _cmd_simulate,
     "draw": _cmd_draw,
     "calibrate": _cmd_calibrate,
     "bench": _cmd_bench,
