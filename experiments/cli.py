@@ -95,6 +95,12 @@ def _parser() -> argparse.ArgumentParser:
     )
 
     bench = sub.add_parser("bench", help="measure the speed of checks, propagation, planning")
+    bench.add_argument(
+        "--level",
+        default="geometric",
+        choices=("geometric", "dynamic"),
+        help="which level's benchmarks (dynamic: against MuJoCo when installed)",
+    )
     bench.add_argument("--quick", action="store_true", help="fewer repeats and seeds")
     bench.add_argument("--repeats", type=int, default=5)
     bench.add_argument("--seed", type=int, default=1)
@@ -270,6 +276,12 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
     if args.repeats < 1:
         raise UsageError(f"--repeats = {args.repeats} must be >= 1")
+    if args.level == "dynamic":
+        from experiments.bench_dynamic import format_dynamic_report, run_dynamic_benchmarks
+
+        results = run_dynamic_benchmarks(repeats=args.repeats, quick=args.quick)
+        print(json.dumps(results, indent=2) if args.json else format_dynamic_report(results))
+        return 0
     results = run_benchmarks(repeats=args.repeats, seed=args.seed, quick=args.quick)
     print(json.dumps(results, indent=2) if args.json else format_report(results))
     return 0

@@ -29,13 +29,15 @@ _TINY = 1e-14
 
 @njit(cache=True)
 def point_polygon_feature(
-    px: float, py: float, b: np.ndarray, nb: int
+    px: float, py: float, b: np.ndarray, nb: int, cutoff: float = np.inf
 ) -> tuple[float, float, float, float, float, bool]:
     """Signed distance from point p to the convex CCW polygon b[:nb], with its nearest feature.
 
     Returns ``(gap, nx, ny, cx, cy, at_vertex)``: the signed distance (negative inside: the
     depth to the nearest edge line), the unit outward normal of b that pushes p out, the
-    nearest point c of b's boundary, and whether c is a vertex of b.
+    nearest point c of b's boundary, and whether c is a vertex of b. When p is at least
+    ``cutoff`` outside an edge line, that separation (a lower bound of the distance) is
+    returned as the gap at once, with the edge's normal and foot point.
     """
     inside, in_nx, in_ny, in_i = -np.inf, 0.0, 0.0, -1
     for i in range(nb):
@@ -44,7 +46,7 @@ def point_polygon_feature(
             d = nx * (px - b[i, 0]) + ny * (py - b[i, 1])
             if d > inside:
                 inside, in_nx, in_ny, in_i = d, nx, ny, i
-    if inside <= 0.0 and in_i >= 0:
+    if (inside <= 0.0 or inside >= cutoff) and in_i >= 0:
         return inside, in_nx, in_ny, px - inside * in_nx, py - inside * in_ny, False
     best, cx, cy, vertex = np.inf, px, py, False
     for i in range(nb):
@@ -111,12 +113,14 @@ def find_contacts(
         b, nb = verts[p], counts[p]
         nearest = np.inf
         for k in range(n):
-            d, nx, ny, _, _, _ = point_polygon_feature(world[k, 0], world[k, 1], b, nb)
+            d, nx, ny, _, _, _ = point_polygon_feature(world[k, 0], world[k, 1], b, nb, margin)
             nearest = min(nearest, d)
             if d < margin:
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
-            d, nx, ny, cx, cy, at_vertex = point_polygon_feature(b[j, 0], b[j, 1], world, n)
+            d, nx, ny, cx, cy, at_vertex = point_polygon_feature(
+                b[j, 0], b[j, 1], world, n, margin
+            )
             nearest = min(nearest, d)
             if d < margin and not (d > 0.0 and at_vertex):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
@@ -130,7 +134,7 @@ def find_contacts(
         if gap >= margin:
             clear = min(clear, gap)
             continue
-        d, nx, ny, cx, cy, _ = point_polygon_feature(ox, oy, world, n)
+        d, nx, ny, cx, cy, _ = point_polygon_feature(ox, oy, world, n, margin + r)
         d -= r
         if d < margin:
             nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
