@@ -1,0 +1,167 @@
+"""Contact detection of the dynamic level, checked against shapely (an independent geometry
+implementation) on poses of the part near the obstacles of table3 and of a free-form scene.
+
+What is specified: every reported gap is the signed distance (shapely: distance outside,
+minus the distance to the boundary inside) of the contact point to its obstacle; every
+normal is a unit vector along which that distance grows at rate 1; every part corner within
+the margin of an obstacle is reported; with no contact, ``clear`` is at least the margin and
+never more than the true distance (shapely) to any obstacle.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import pytest
+import shapely
+from test_geometry_kernel import _scene
+
+from validity.contact_kernel import MAX_CONTACTS, find_contacts, point_polygon_feature
+from validity.geometry_kernel import pose_vertices
+from validity.scene_arrays import SceneArrays
+
+MARGIN = 0.05
+N_POSES = 3000
+TOL = 1e-9  # kernel vs shapely distances (length)
+
+
+def _signed(geom, x: float, y: float) -> float:
+    """Shapely's signed distance from (x, y) to a polygon or disc (negative inside)."""
+    p = shapely.Point(x, y)
+    d = geom.exterior.distance(p)
+    return -d if geom.contains(p) else d
+
+
+@functools.cache
+def _case(name: str):
+    scene = _scene(name)
+    arrays = SceneArrays.from_scene(scene)
+    polygons = [shapely.Polygon(p) for p in scene.obstacles.polygons]
+    rng = np.random.default_rng(11)
+    x0, x1, y0, y1 = scene.bounds
+    poses, worlds = [], []
+    union = shapely.union_all(
+        polygons + [shapely.Point(c[:2]).buffer(c[2], 256) for c in scene.obstacles.circles]
+    )
+    while len(poses) < N_POSES:
+        pose = (rng.uniform(x0, x1), rng.uniform(y0, y1), rng.uniform(-math.pi, math.pi))
+        world = np.empty_like(arrays.body)
+        pose_vertices(arrays.body, *pose, world)
+        gap = shapely.Polygon(world).distance(union)
+        overlap = shapely.Polygon(world).intersection(union).area
+        if gap < 2 * MARGIN and overlap < 0.02:  # near an obstacle, at most slightly in
+            poses.append(pose)
+            worlds.append(world)
+    return scene, arrays, polygons, poses, worlds
+
+
+def _contacts(arrays: SceneArrays, world: np.ndarray, margin: float = MARGIN):
+    out = np.empty((MAX_CONTACTS, 5))
+    nc, clear = find_contacts(
+        world, arrays.verts, arrays.counts, arrays.aabbs, arrays.circles, margin, out
+    )
+    return out[:nc], clear
+
+
+def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[str, float]:
+    """The kind of contact that explains the row best, and shapely's signed distance for it:
+    a part corner against a polygon; a polygon corner (at p - gap n) against the part; a disc
+    (centre at p - (gap + r) n) against the part."""
+    candidates = [("unexplained", math.inf)]
+    if np.min(np.hypot(world[:, 0] - px, world[:, 1] - py)) < 1e-12:
+        candidates += [("corner", _signed(g, px, py)) for g in polygons]
+    ox, oy = px - gap * nx, py - gap * ny
+    for poly in scene.obstacles.polygons:
+        if np.min(np.hypot(poly[:, 0] - ox, poly[:, 1] - oy)) < 1e-9:
+            candidates.append(("obstacle corner", _signed(part, ox, oy)))
+    for cx, cy, r in scene.obstacles.circles:
+        if math.hypot(px - (gap + r) * nx - cx, py - (gap + r) * ny - cy) < 1e-9:
+            candidates.append(("disc", _signed(part, cx, cy) - r))
+    return min(candidates, key=lambda c: abs(c[1] - gap))
+
+
+@pytest.mark.parametrize("name", ["table3", "free-form"])
+def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(name: str) -> None:
+    """Each contact is explained by one kind with shapely's signed distance equal to its gap;
+    for a part corner outside a polygon, stepping 1e-6 along the normal raises the distance by
+    1e-6 (the normal is the distance's gradient, so the LCP's linearisation is first-order)."""
+    scene, arrays, polygons, _, worlds = _case(name)
+    kinds: dict[str, int] = {}
+    for world in worlds:
+        rows, _ = _contacts(arrays, world)
+        part = shapely.Polygon(world)
+        for gap, nx, ny, px, py in rows:
+            assert math.hypot(nx, ny) == pytest.approx(1.0, abs=1e-12)
+            kind, reference = _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py)
+            assert abs(reference - gap) < TOL, (kind, gap, reference)
+            kinds[kind] = kinds.get(kind, 0) + 1
+            if kind == "corner" and gap > 1e-6:
+                own = min(polygons, key=lambda g: abs(_signed(g, px, py) - gap))
+                ahead = _signed(own, px + 1e-6 * nx, py + 1e-6 * ny)
+                assert ahead - gap == pytest.approx(1e-6, abs=1e-9)
+    assert kinds.get("corner", 0) > 500 and kinds.get("obstacle corner", 0) > 20
+    if len(scene.obstacles.circles):
+        assert kinds.get("disc", 0) > 20
+
+
+@pytest.mark.parametrize("name", ["table3", "free-form"])
+def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
+    """Completeness: a part corner whose shapely signed distance to a polygon is below the
+    margin appears as a contact at that corner with that gap."""
+    _, arrays, polygons, _, worlds = _case(name)
+    missing = 0
+    for world in worlds:
+        rows, _ = _contacts(arrays, world)
+        for cx, cy in world:
+            for g in polygons:
+                d = _signed(g, cx, cy)
+                if d < MARGIN - 1e-9:
+                    hit = (np.abs(rows[:, 3] - cx) < 1e-12) & (np.abs(rows[:, 4] - cy) < 1e-12)
+                    hit &= np.abs(rows[:, 0] - d) < TOL
+                    missing += not hit.any()
+    assert missing == 0
+
+
+@pytest.mark.parametrize("name", ["table3", "free-form"])
+def test_clear_is_a_true_lower_bound_when_nothing_is_in_reach(name: str) -> None:
+    scene, arrays, polygons, _, worlds = _case(name)
+    discs = [shapely.Point(c[:2]).buffer(c[2], 1024) for c in scene.obstacles.circles]
+    free = 0
+    for world in worlds:
+        rows, clear = _contacts(arrays, world, margin=0.01)
+        if len(rows):
+            continue
+        free += 1
+        part = shapely.Polygon(world)
+        true = min(part.distance(g) for g in polygons + discs)
+        assert 0.01 <= clear <= true + 1e-6
+    assert free > 50
+
+
+def test_a_box_resting_on_a_floor_has_exactly_its_two_bottom_corners() -> None:
+    """Hand-worked: a 2 x 1 box flat on y = 0 touches at (-1, 0) and (1, 0), normal +y; the
+    floor's corners are far away and give nothing."""
+    verts = np.array([[[-10.0, -1.0], [10.0, -1.0], [10.0, 0.0], [-10.0, 0.0]]])
+    counts = np.array([4])
+    from validity.geometry_kernel import polygon_aabbs
+
+    world = np.array([[-1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 1.0]])
+    out = np.empty((MAX_CONTACTS, 5))
+    nc, _ = find_contacts(
+        world, verts, counts, polygon_aabbs(verts, counts), np.zeros((0, 3)), 0.01, out
+    )
+    assert nc == 2
+    assert sorted(out[:2, 3]) == [-1.0, 1.0]
+    np.testing.assert_allclose(out[:2, 0], 0.0, atol=1e-15)
+    np.testing.assert_allclose(out[:2, 1:3], [[0.0, 1.0], [0.0, 1.0]], atol=1e-15)
+
+
+def test_point_inside_a_square_gets_the_nearest_edge() -> None:
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    gap, nx, ny, cx, cy, vertex = point_polygon_feature(0.9, 0.5, square, 4)
+    assert (gap, nx, ny, cx, cy, vertex) == pytest.approx((-0.1, 1.0, 0.0, 1.0, 0.5, False))
+    gap, nx, ny, cx, cy, vertex = point_polygon_feature(2.0, 2.0, square, 4)
+    assert gap == pytest.approx(math.sqrt(2)) and vertex
+    assert (nx, ny) == pytest.approx((1 / math.sqrt(2), 1 / math.sqrt(2)))
