@@ -140,9 +140,7 @@ def plan(
     ou.RNG.setSeed(int(seed))
     ou.setLogLevel(previous)
 
-    space = make_state_space(
-        scene, level.state_dim, getattr(level, "velocity_limit", None)
-    )
+    space = make_state_space(scene, level.state_dim, getattr(level, "velocity_limit", None))
     low, high = level.control_bounds()
     cspace = make_control_space(space, low, high)
     ss = oc.SimpleSetup(cspace)

@@ -118,9 +118,7 @@ def find_contacts(
             if d < margin:
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
-            d, nx, ny, cx, cy, at_vertex = point_polygon_feature(
-                b[j, 0], b[j, 1], world, n, margin
-            )
+            d, nx, ny, cx, cy, at_vertex = point_polygon_feature(b[j, 0], b[j, 1], world, n, margin)
             nearest = min(nearest, d)
             if d < margin and not (d > 0.0 and at_vertex):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)

@@ -144,9 +144,7 @@ def test_tilted_drop_onto_a_corner_comes_to_rest_without_energy_gain(mu: float) 
     within 5 s); energy never rises; the deepest overlap stays below 1e-4 (length)."""
     scene = _floor_scene(mu)
     level = DynamicLevel(scene)
-    run = level.simulate(
-        level.state_of_pose(scene.start("tilted")), duration=5.0, rest_speed=1e-3
-    )
+    run = level.simulate(level.state_of_pose(scene.start("tilted")), duration=5.0, rest_speed=1e-3)
     assert run.energy_rise() <= ENERGY_TOL
     assert run.summary["max_penetration"] < 1e-4
     assert run.summary["failures"] == 0
