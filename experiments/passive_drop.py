@@ -85,6 +85,7 @@ def passive_drop(
     """Drop the part from the scene's start ``orientation`` and judge where it ends."""
     level = level or DynamicLevel(scene, step=step)
     start = level.state_of_pose(scene.start(orientation))
+    level.simulate(start, duration=level.step)  # load the compiled kernel before the clock
     t0 = time.perf_counter()
     run = level.simulate(
         start,

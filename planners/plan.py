@@ -99,21 +99,27 @@ def fine_path(
     piece: float,
 ) -> np.ndarray:
     """Re-propagate a control path as OMPL did, in pieces of ``piece`` seconds (the
-    propagation step), each split into equal sub-pieces of at most the level's step ``h``:
-    every state the level visits. A sub-piece has the same length as the level's own step
-    inside one piece, so the states at piece ends are the planner's own states, not a
-    re-integration that a chaotic contact trajectory would amplify."""
+    propagation step): every state the level visits. Each piece starts from where the last
+    one ended, as in the planner, so the states at piece ends are the planner's own states,
+    not a re-integration that a chaotic contact trajectory would amplify. A level with
+    ``propagate_path`` gives the states inside a piece from the same run; otherwise a piece
+    is split into equal sub-pieces of at most the level's step."""
     if len(path) == 0:
         return np.zeros((0, level.state_dim))
+    states = [np.asarray(path[0], dtype=float)]
+    inside = getattr(level, "propagate_path", None)
     split = max(1, math.ceil(piece / level.step - 1e-9))
-    sub = piece / split
-    states = [tuple(path[0])]
     for i in range(len(controls)):
         state = tuple(path[i])
-        pieces = max(1, round(durations[i] / piece))
-        for _ in range(pieces * split):
-            state = level.propagate(state, controls[i], sub)
-            states.append(tuple(state))
+        for _ in range(max(1, round(durations[i] / piece))):
+            if inside is not None:
+                run = inside(state, controls[i], piece)
+                states.extend(run[1:])
+                state = level.propagate(state, controls[i], piece)
+                continue
+            for _ in range(split):
+                state = level.propagate(state, controls[i], piece / split)
+                states.append(np.asarray(state, dtype=float))
     return np.array(states)
 
 

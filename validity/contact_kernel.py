@@ -25,30 +25,82 @@ from validity.geometry_kernel import _box_gap, _box_of, _edge_normal
 
 MAX_CONTACTS = 12  # a planar convex part touches at most a few features; deeper ones are kept
 _TINY = 1e-14
+_ALL_TRUE = np.ones(1, dtype=np.bool_)  # read-only default: every edge and vertex is real
+_SEAM_PROBE = 1e-7  # how far beyond an edge (length) another piece must be for a seam
+
+
+@njit(cache=True)
+def _contains(b: np.ndarray, nb: int, px: float, py: float) -> bool:
+    """p inside or on the convex CCW polygon b[:nb]."""
+    for i in range(nb):
+        nx, ny, ok = _edge_normal(b, i, nb)
+        if ok and nx * (px - b[i, 0]) + ny * (py - b[i, 1]) > 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def surface_edges(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``(P, K)``: True where edge i of polygon p is a real surface, False for a seam: an edge
+    whose outside, just beyond its midpoint, lies in another polygon (convex pieces of one
+    solid, such as mitred wall segments or an ear-clipped polygon)."""
+    P, K = verts.shape[0], verts.shape[1]
+    out = np.ones((P, K), dtype=np.bool_)
+    for p in range(P):
+        n = counts[p]
+        for i in range(n):
+            nx, ny, ok = _edge_normal(verts[p], i, n)
+            if not ok:
+                continue
+            j = (i + 1) % n
+            mx = 0.5 * (verts[p, i, 0] + verts[p, j, 0]) + _SEAM_PROBE * nx
+            my = 0.5 * (verts[p, i, 1] + verts[p, j, 1]) + _SEAM_PROBE * ny
+            for q in range(P):
+                if q != p and _contains(verts[q], counts[q], mx, my):
+                    out[p, i] = False
+                    break
+    return out
 
 
 @njit(cache=True)
 def point_polygon_feature(
-    px: float, py: float, b: np.ndarray, nb: int, cutoff: float = np.inf
-) -> tuple[float, float, float, float, float, bool]:
+    px: float,
+    py: float,
+    b: np.ndarray,
+    nb: int,
+    cutoff: float = np.inf,
+    surface: np.ndarray = _ALL_TRUE,
+    corners: np.ndarray = _ALL_TRUE,
+) -> tuple[float, float, float, float, float, bool, bool]:
     """Signed distance from point p to the convex CCW polygon b[:nb], with its nearest feature.
 
-    Returns ``(gap, nx, ny, cx, cy, at_vertex)``: the signed distance (negative inside: the
-    depth to the nearest edge line), the unit outward normal of b that pushes p out, the
-    nearest point c of b's boundary, and whether c is a vertex of b. When p is at least
-    ``cutoff`` outside an edge line, that separation (a lower bound of the distance) is
-    returned as the gap at once, with the edge's normal and foot point.
+    Returns ``(gap, nx, ny, cx, cy, at_vertex, hidden)``: the signed distance (negative
+    inside: the depth to the nearest surface edge line), the unit outward normal of b that
+    pushes p out, the nearest point c of b's boundary, whether c is a vertex of b, and whether
+    the nearest feature is hidden inside the solid that b is a piece of. ``surface[i]`` says
+    whether edge i (from vertex i to i + 1) is a real surface and ``corners[k]`` whether
+    vertex k is a corner (not a flat joint) of the solid: a seam never gives the normal of a
+    point inside, and a point outside whose nearest feature is a seam or a flat joint is
+    ``hidden`` (the neighbouring piece gives the real contact; this one would push along the
+    surface). When p is at least ``cutoff`` outside an edge line, that separation (a lower
+    bound of the distance) is returned as the gap at once.
     """
     inside, in_nx, in_ny, in_i = -np.inf, 0.0, 0.0, -1
+    depth, d_nx, d_ny, d_i = -np.inf, 0.0, 0.0, -1
+    last_s, last_c = surface.shape[0] - 1, corners.shape[0] - 1
     for i in range(nb):
         nx, ny, ok = _edge_normal(b, i, nb)
         if ok:
             d = nx * (px - b[i, 0]) + ny * (py - b[i, 1])
             if d > inside:
                 inside, in_nx, in_ny, in_i = d, nx, ny, i
-    if (inside <= 0.0 or inside >= cutoff) and in_i >= 0:
-        return inside, in_nx, in_ny, px - inside * in_nx, py - inside * in_ny, False
-    best, cx, cy, vertex = np.inf, px, py, False
+            if d > depth and surface[min(i, last_s)]:
+                depth, d_nx, d_ny, d_i = d, nx, ny, i
+    if inside >= cutoff and in_i >= 0:
+        return inside, in_nx, in_ny, px - inside * in_nx, py - inside * in_ny, False, False
+    if inside <= 0.0 and d_i >= 0:
+        return depth, d_nx, d_ny, px - depth * d_nx, py - depth * d_ny, False, False
+    best, cx, cy, vertex, hidden, joint = np.inf, px, py, False, False, -1
     for i in range(nb):
         j = (i + 1) % nb
         ax, ay = b[i, 0], b[i, 1]
@@ -61,9 +113,19 @@ def point_polygon_feature(
         d = math.hypot(px - qx, py - qy)
         if d < best:
             best, cx, cy, vertex = d, qx, qy, (t <= 0.0 or t >= 1.0)
+            k = i if t <= 0.0 else j
+            joint = k if vertex and not corners[min(k, last_c)] else -1
+            hidden = not vertex and not surface[min(i, last_s)]
+    if joint >= 0:  # a flat joint: the distance to the surface line through it
+        for i in ((joint - 1) % nb, joint):
+            nx, ny, ok = _edge_normal(b, i, nb)
+            if ok and surface[min(i, last_s)]:
+                gap = nx * (px - b[joint, 0]) + ny * (py - b[joint, 1])
+                return gap, nx, ny, px - gap * nx, py - gap * ny, False, False
+        hidden = True
     if best > _TINY:
-        return best, (px - cx) / best, (py - cy) / best, cx, cy, vertex
-    return best, in_nx, in_ny, cx, cy, vertex  # on the boundary: the edge's own normal
+        return best, (px - cx) / best, (py - cy) / best, cx, cy, vertex, hidden
+    return best, in_nx, in_ny, cx, cy, vertex, hidden  # on the boundary: the edge's normal
 
 
 @njit(cache=True)
@@ -83,12 +145,56 @@ def _add(contacts: np.ndarray, nc: int, gap, nx, ny, px, py) -> int:
 
 
 @njit(cache=True)
+def _solid(verts: np.ndarray, counts: np.ndarray, px: float, py: float) -> bool:
+    for q in range(verts.shape[0]):
+        if _contains(verts[q], counts[q], px, py):
+            return True
+    return False
+
+
+@njit(cache=True)
+def corner_vertices(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``(P, K)``: False where vertex k of polygon p only joins two pieces along a straight
+    surface (a surface edge ends there and the solid continues along its line in another
+    piece), True elsewhere. Such a joint is no corner a part can touch; a contact of its own
+    would, with the part sliding over it, push along the surface: a ghost that stops a slide.
+    """
+    P, K = verts.shape[0], verts.shape[1]
+    out = np.ones((P, K), dtype=np.bool_)
+    surface = surface_edges(verts, counts)
+    for p in range(P):
+        n = counts[p]
+        for k in range(n):
+            for i, toward in ((k, 1), ((k - 1) % n, -1)):  # the edges leaving and entering k
+                nx, ny, ok = _edge_normal(verts[p], i, n)
+                if not ok or not surface[p, i]:
+                    continue
+                j = (i + 1) % n
+                tx, ty = verts[p, j, 0] - verts[p, i, 0], verts[p, j, 1] - verts[p, i, 1]
+                ll = math.hypot(tx, ty)
+                tx, ty = -toward * tx / ll, -toward * ty / ll  # along the line, beyond k
+                bx = verts[p, k, 0] + _SEAM_PROBE * tx
+                by = verts[p, k, 1] + _SEAM_PROBE * ty
+                below = _solid(
+                    verts, counts, bx - 1e-3 * _SEAM_PROBE * nx, by - 1e-3 * _SEAM_PROBE * ny
+                )
+                above = _solid(
+                    verts, counts, bx + 1e-3 * _SEAM_PROBE * nx, by + 1e-3 * _SEAM_PROBE * ny
+                )
+                if below and not above:
+                    out[p, k] = False
+    return out
+
+
+@njit(cache=True)
 def find_contacts(
     world: np.ndarray,
     verts: np.ndarray,
     counts: np.ndarray,
     aabbs: np.ndarray,
     circles: np.ndarray,
+    surface: np.ndarray,
+    corners: np.ndarray,
     margin: float,
     contacts: np.ndarray,
 ) -> tuple[int, float]:
@@ -98,8 +204,10 @@ def find_contacts(
     on the part and n points from the obstacle into the part. Returns ``(count, clear)``:
     ``clear`` is a lower bound on the distance to every obstacle that gave no contact (inf when
     there is none), so a caller with no contacts knows how far the part may move before one
-    can appear. Broad phase: obstacles whose bounding box is ``margin`` or more away are
-    bounded by that box gap and not tested further.
+    can appear. ``surface (P, K)`` marks the polygons' real surface edges
+    (:func:`surface_edges`), ``corners (P, K)`` their convex corners
+    (:func:`corner_vertices`). Broad phase: obstacles whose bounding box is ``margin`` or more
+    away are bounded by that box gap and not tested further.
     """
     n = world.shape[0]
     x0, y0, x1, y1 = _box_of(world)
@@ -113,12 +221,18 @@ def find_contacts(
         b, nb = verts[p], counts[p]
         nearest = np.inf
         for k in range(n):
-            d, nx, ny, _, _, _ = point_polygon_feature(world[k, 0], world[k, 1], b, nb, margin)
+            d, nx, ny, _, _, _, hidden = point_polygon_feature(
+                world[k, 0], world[k, 1], b, nb, margin, surface[p], corners[p]
+            )
             nearest = min(nearest, d)
-            if d < margin:
+            if d < margin and not hidden:
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
-            d, nx, ny, cx, cy, at_vertex = point_polygon_feature(b[j, 0], b[j, 1], world, n, margin)
+            if not corners[p, j]:
+                continue
+            d, nx, ny, cx, cy, at_vertex, _ = point_polygon_feature(
+                b[j, 0], b[j, 1], world, n, margin
+            )
             nearest = min(nearest, d)
             if d < margin and not (d > 0.0 and at_vertex):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
@@ -132,7 +246,7 @@ def find_contacts(
         if gap >= margin:
             clear = min(clear, gap)
             continue
-        d, nx, ny, cx, cy, _ = point_polygon_feature(ox, oy, world, n, margin + r)
+        d, nx, ny, cx, cy, _, _ = point_polygon_feature(ox, oy, world, n, margin + r)
         d -= r
         if d < margin:
             nc = _add(contacts, nc, d, -nx, -ny, cx, cy)

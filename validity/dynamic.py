@@ -83,6 +83,7 @@ class DynamicLevel:
         margin: float = DEFAULT_MARGIN,
         push_cap: float = PUSH_CAP,
         skip_free: bool = True,
+        warm_start: bool = True,
         penetration_tolerance: float = PENETRATION_TOLERANCE,
     ):
         for label, value, low, high in (
@@ -100,6 +101,7 @@ class DynamicLevel:
         self.margin = float(margin)
         self.push_cap = float(push_cap)
         self.skip_free = bool(skip_free)
+        self.warm_start = bool(warm_start)
         self.penetration_tolerance = float(penetration_tolerance)
         self.arrays = SceneArrays.from_scene(scene)
         part = scene.part
@@ -170,6 +172,7 @@ class DynamicLevel:
             self.margin,
             self.push_cap,
             self.skip_free,
+            self.warm_start,
             y_stop,
             rest_speed,
             rest_steps,
@@ -178,6 +181,8 @@ class DynamicLevel:
             a.counts,
             a.aabbs,
             a.circles,
+            a.surface,
+            a.corners,
             a.bounds,
             out,
             traj,
@@ -195,6 +200,15 @@ class DynamicLevel:
         if not -math.pi <= out[2] < math.pi:  # wrap only when needed: chained calls stay exact
             out[2] = (out[2] + math.pi) % (2.0 * math.pi) - math.pi
         return tuple(float(v) for v in out)
+
+    def propagate_path(
+        self, state: Sequence[float], control: Sequence[float], duration: float
+    ) -> np.ndarray:
+        """Every state of :meth:`propagate` (rows, start first; the last row is its result):
+        the one compiled run, so the states between are those the propagation visits."""
+        _, _, _, traj, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=True)
+        traj[:, 2] = (traj[:, 2] + math.pi) % (2.0 * math.pi) - math.pi
+        return traj
 
     def simulate(
         self,

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from feeders.scene import Scene
+from validity.contact_kernel import corner_vertices, surface_edges
 from validity.geometry_kernel import polygon_aabbs
 
 
@@ -15,7 +16,9 @@ class SceneArrays:
     """``body (4, 2)`` part corners in the body frame (centre of mass at the origin);
     ``verts (P, K, 2)``, ``counts (P,)``, ``aabbs (P, 4)`` static convex polygons;
     ``circles (C, 3)`` static discs; ``bounds (4,)`` = x_min, x_max, y_min, y_max of the
-    centre of mass."""
+    centre of mass; ``surface (P, K)`` True for polygon edges that are real surfaces, False
+    for seams between pieces of one solid; ``corners (P, K)`` True for polygon vertices that
+    are convex corners of the solid."""
 
     body: np.ndarray
     verts: np.ndarray
@@ -23,6 +26,8 @@ class SceneArrays:
     aabbs: np.ndarray
     circles: np.ndarray
     bounds: np.ndarray
+    surface: np.ndarray
+    corners: np.ndarray
 
     @classmethod
     def from_scene(cls, scene: Scene) -> SceneArrays:
@@ -36,4 +41,8 @@ class SceneArrays:
             aabbs=polygon_aabbs(np.ascontiguousarray(verts), counts),
             circles=np.ascontiguousarray(circles, dtype=np.float64).reshape(-1, 3),
             bounds=np.asarray(scene.bounds, dtype=np.float64),
+            surface=surface_edges(np.ascontiguousarray(verts), np.asarray(counts, dtype=np.int64)),
+            corners=corner_vertices(
+                np.ascontiguousarray(verts), np.asarray(counts, dtype=np.int64)
+            ),
         )

@@ -16,7 +16,9 @@ mass matrix M = diag(m, m, I). Each step of length h:
 What a step does not need it skips: no contact within the margin means no LCP (a free step of
 the same update), and then as many following steps as provably cannot bring a contact within
 the margin skip the contact search too (the bound: the clearance against the farthest any
-point of the part can move); mu = 0 drops the friction unknowns (an LCP of size n_c instead
+point of the part can move); an LCP in the same contact mode as the step before is solved by
+the previous step's complementary basis, accepted only when it verifies as a solution, before
+any pivoting; mu = 0 drops the friction unknowns (an LCP of size n_c instead
 of 4 n_c); the broad phase of the contact search bounds far obstacles by their boxes.
 
 A step whose LCP fails even after the solver's regularisation retry falls back to the
@@ -33,7 +35,7 @@ from numba import njit
 
 from validity.contact_kernel import MAX_CONTACTS, find_contacts
 from validity.geometry_kernel import pose_vertices
-from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_lcp
+from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_from_basis, solve_lcp
 
 # Per-step telemetry columns.
 T_CONTACTS, T_STATUS, T_PIVOTS, T_ALPHA, T_RESIDUAL, T_PENETRATION, T_SIZE = range(7)
@@ -47,6 +49,7 @@ TELEMETRY_COLUMNS = (
     "lcp_size",
 )
 NO_LCP = -1  # T_STATUS of a step without contacts
+WARM = 9  # T_STATUS: the previous step's basis, verified, solved the LCP without pivoting
 FALLBACK_FRICTIONLESS = 10  # T_STATUS: the friction LCP failed, the frictionless one held
 FAILED = 11  # T_STATUS: no LCP could be solved; the step took no contact impulse
 
@@ -63,7 +66,8 @@ FAILED = 11  # T_STATUS: no LCP could be solved; the step took no contact impuls
     S_MAX_RESIDUAL,
     S_MAX_PENETRATION,
     S_CONTACT_STEPS,
-) = range(11)
+    S_WARM,
+) = range(12)
 SUMMARY_FIELDS = (
     "steps",
     "contact_searches",
@@ -76,6 +80,7 @@ SUMMARY_FIELDS = (
     "max_residual",
     "max_penetration",
     "contact_steps",
+    "warm_starts",
 )
 
 # Why a run ended.
@@ -188,6 +193,7 @@ def simulate_kernel(
     margin0: float,
     push_cap: float,
     skip_free: bool,
+    warm_start: bool,
     y_stop: float,
     rest_speed: float,
     rest_steps: int,
@@ -196,6 +202,8 @@ def simulate_kernel(
     counts: np.ndarray,
     aabbs: np.ndarray,
     circles: np.ndarray,
+    surface: np.ndarray,
+    corners: np.ndarray,
     bounds: np.ndarray,
     out_state: np.ndarray,
     traj: np.ndarray,
@@ -232,6 +240,8 @@ def simulate_kernel(
     b = np.zeros(nmax)
     z = np.zeros(nmax)
     bias = np.empty(MAX_CONTACTS)
+    basic = np.zeros(nmax, dtype=np.bool_)  # the last solved LCP's basis: z_i > 0
+    basic_size = -1
     vstar = np.empty(3)
     v = np.empty(3)
 
@@ -252,7 +262,9 @@ def simulate_kernel(
             speed = math.hypot(vx, vy) + radius * abs(om)
             margin = margin0 + 2.0 * h * speed
             pose_vertices(body, x, y, th, world)
-            nc, clear = find_contacts(world, verts, counts, aabbs, circles, margin, contacts)
+            nc, clear = find_contacts(
+                world, verts, counts, aabbs, circles, surface, corners, margin, contacts
+            )
             summary[S_SEARCHES] += 1
             if nc == 0:
                 vx, vy, om = vstar[0], vstar[1], vstar[2]
@@ -273,20 +285,33 @@ def simulate_kernel(
                     _friction_lcp(wn, wt, nc, mu, minv, bias, vstar, B, b)
                 else:
                     _frictionless_lcp(wn, nc, minv, bias, vstar, B, b)
-                status, pivots, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
                 summary[S_LCPS] += 1
-                if status != LCP_SOLVED and status != LCP_REGULARISED and frictional:
+                warm = False
+                if warm_start and size == basic_size:
+                    residual = solve_from_basis(B[:size, :size], b[:size], basic[:size], z[:size])
+                    warm = residual < np.inf
+                if warm:
+                    status = WARM
+                    summary[S_WARM] += 1
+                else:
+                    status, pivots, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
+                solved = status == LCP_SOLVED or status == LCP_REGULARISED or status == WARM
+                if not solved and frictional:
                     size = nc
                     _frictionless_lcp(wn, nc, minv, bias, vstar, B, b)
                     st2, pv2, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
                     pivots += pv2
                     frictional = False
                     status = FALLBACK_FRICTIONLESS if st2 <= LCP_REGULARISED else FAILED
-                elif status != LCP_SOLVED and status != LCP_REGULARISED:
+                elif not solved:
                     status = FAILED
                 if status == FAILED:
                     summary[S_FAILURES] += 1
+                    basic_size = -1
                 else:
+                    basic_size = size
+                    for i in range(size):
+                        basic[i] = z[i] > 0.0
                     if status == FALLBACK_FRICTIONLESS:
                         summary[S_FALLBACKS] += 1
                     elif status == LCP_REGULARISED:

@@ -18,8 +18,14 @@ import pytest
 import shapely
 from test_geometry_kernel import _scene
 
-from validity.contact_kernel import MAX_CONTACTS, find_contacts, point_polygon_feature
-from validity.geometry_kernel import pose_vertices
+from validity.contact_kernel import (
+    MAX_CONTACTS,
+    corner_vertices,
+    find_contacts,
+    point_polygon_feature,
+    surface_edges,
+)
+from validity.geometry_kernel import polygon_aabbs, pose_vertices
 from validity.scene_arrays import SceneArrays
 
 MARGIN = 0.05
@@ -60,9 +66,44 @@ def _case(name: str):
 def _contacts(arrays: SceneArrays, world: np.ndarray, margin: float = MARGIN):
     out = np.empty((MAX_CONTACTS, 5))
     nc, clear = find_contacts(
-        world, arrays.verts, arrays.counts, arrays.aabbs, arrays.circles, margin, out
+        world,
+        arrays.verts,
+        arrays.counts,
+        arrays.aabbs,
+        arrays.circles,
+        arrays.surface,
+        arrays.corners,
+        margin,
+        out,
     )
     return out[:nc], clear
+
+
+def _surface_depths(scene, px: float, py: float) -> list[float]:
+    """For each polygon containing p: shapely's distance from p to the nearest line of its
+    edges that are real surfaces (not shared with another piece)."""
+    pieces = [shapely.Polygon(p) for p in scene.obstacles.polygons]
+    point = shapely.Point(px, py)
+    out = []
+    for k, poly in enumerate(scene.obstacles.polygons):
+        if not pieces[k].covers(point):
+            continue
+        lines = []
+        for i in range(len(poly)):
+            a, b = poly[i], poly[(i + 1) % len(poly)]
+            beyond = shapely.Point((a + b) / 2 + 1e-7 * _outward(a, b))
+            if any(other.covers(beyond) for j, other in enumerate(pieces) if j != k):
+                continue  # a seam
+            far = 1e3 * (b - a) / np.linalg.norm(b - a)
+            lines.append(shapely.LineString([a - far, b + far]).distance(point))
+        if lines:
+            out.append(min(lines))
+    return out
+
+
+def _outward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    e = (b - a) / np.linalg.norm(b - a)
+    return np.array([e[1], -e[0]])
 
 
 def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[str, float]:
@@ -72,6 +113,8 @@ def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[s
     candidates = [("unexplained", math.inf)]
     if np.min(np.hypot(world[:, 0] - px, world[:, 1] - py)) < 1e-12:
         candidates += [("corner", _signed(g, px, py)) for g in polygons]
+        # inside a piece, the depth is to its nearest real surface, never to a seam
+        candidates += [("corner in a piece", -d) for d in _surface_depths(scene, px, py)]
     ox, oy = px - gap * nx, py - gap * ny
     for poly in scene.obstacles.polygons:
         if np.min(np.hypot(poly[:, 0] - ox, poly[:, 1] - oy)) < 1e-9:
@@ -101,27 +144,32 @@ def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(nam
                 own = min(polygons, key=lambda g: abs(_signed(g, px, py) - gap))
                 ahead = _signed(own, px + 1e-6 * nx, py + 1e-6 * ny)
                 assert ahead - gap == pytest.approx(1e-6, abs=1e-9)
-    assert kinds.get("corner", 0) > 500 and kinds.get("obstacle corner", 0) > 20
+    assert (
+        kinds.get("corner", 0) + kinds.get("corner in a piece", 0) > 500
+        and kinds.get("obstacle corner", 0) > 20
+    )
     if len(scene.obstacles.circles):
         assert kinds.get("disc", 0) > 20
 
 
 @pytest.mark.parametrize("name", ["table3", "free-form"])
 def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
-    """Completeness: a part corner whose shapely signed distance to a polygon is below the
-    margin appears as a contact at that corner with that gap."""
+    """Completeness: a part corner whose shapely signed distance to the solid (the union of
+    the polygons) is below the margin appears as a contact at that corner: with that gap when
+    outside, with a gap <= 0 when inside (the depth to the piece's own surface)."""
     _, arrays, polygons, _, worlds = _case(name)
-    missing = 0
+    missing = checked = 0
     for world in worlds:
         rows, _ = _contacts(arrays, world)
         for cx, cy in world:
-            for g in polygons:
-                d = _signed(g, cx, cy)
-                if d < MARGIN - 1e-9:
-                    hit = (np.abs(rows[:, 3] - cx) < 1e-12) & (np.abs(rows[:, 4] - cy) < 1e-12)
-                    hit &= np.abs(rows[:, 0] - d) < TOL
-                    missing += not hit.any()
+            d = min(_signed(g, cx, cy) for g in polygons)
+            if d < MARGIN - 1e-9:
+                checked += 1
+                hit = (np.abs(rows[:, 3] - cx) < 1e-12) & (np.abs(rows[:, 4] - cy) < 1e-12)
+                hit &= (np.abs(rows[:, 0] - d) < TOL) if d >= 0 else (rows[:, 0] <= 0)
+                missing += not hit.any()
     assert missing == 0
+    assert checked > 1000
 
 
 @pytest.mark.parametrize("name", ["table3", "free-form"])
@@ -145,12 +193,12 @@ def test_a_box_resting_on_a_floor_has_exactly_its_two_bottom_corners() -> None:
     floor's corners are far away and give nothing."""
     verts = np.array([[[-10.0, -1.0], [10.0, -1.0], [10.0, 0.0], [-10.0, 0.0]]])
     counts = np.array([4])
-    from validity.geometry_kernel import polygon_aabbs
-
     world = np.array([[-1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 1.0]])
     out = np.empty((MAX_CONTACTS, 5))
+    aabbs = polygon_aabbs(verts, counts)
+    surface, corners = surface_edges(verts, counts), corner_vertices(verts, counts)
     nc, _ = find_contacts(
-        world, verts, counts, polygon_aabbs(verts, counts), np.zeros((0, 3)), 0.01, out
+        world, verts, counts, aabbs, np.zeros((0, 3)), surface, corners, 0.01, out
     )
     assert nc == 2
     assert sorted(out[:2, 3]) == [-1.0, 1.0]
@@ -160,8 +208,33 @@ def test_a_box_resting_on_a_floor_has_exactly_its_two_bottom_corners() -> None:
 
 def test_point_inside_a_square_gets_the_nearest_edge() -> None:
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    gap, nx, ny, cx, cy, vertex = point_polygon_feature(0.9, 0.5, square, 4)
+    gap, nx, ny, cx, cy, vertex, _ = point_polygon_feature(0.9, 0.5, square, 4)
     assert (gap, nx, ny, cx, cy, vertex) == pytest.approx((-0.1, 1.0, 0.0, 1.0, 0.5, False))
-    gap, nx, ny, cx, cy, vertex = point_polygon_feature(2.0, 2.0, square, 4)
+    gap, nx, ny, cx, cy, vertex, _ = point_polygon_feature(2.0, 2.0, square, 4)
     assert gap == pytest.approx(math.sqrt(2)) and vertex
     assert (nx, ny) == pytest.approx((1 / math.sqrt(2), 1 / math.sqrt(2)))
+
+
+def test_seams_between_pieces_of_one_solid_are_not_surfaces() -> None:
+    """A floor cut into two squares: the shared edge is a seam, the others are surfaces; a
+    corner touching the floor exactly at the seam's top end gets the floor normal (0, 1) from
+    both pieces, never the seam's sideways normal (a ghost contact that would stop a slide)."""
+    verts = np.array(
+        [
+            [[-2.0, -2.0], [0.0, -2.0], [0.0, 0.0], [-2.0, 0.0]],
+            [[0.0, -2.0], [2.0, -2.0], [2.0, 0.0], [0.0, 0.0]],
+        ]
+    )
+    counts = np.array([4, 4])
+    surface = surface_edges(verts, counts)
+    assert surface.tolist() == [[True, False, True, True], [True, True, True, False]]
+    world = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]) - np.array([0.0, 1e-12])
+    out = np.empty((MAX_CONTACTS, 5))
+    aabbs = polygon_aabbs(verts, counts)
+    corners = corner_vertices(verts, counts)
+    assert corners.tolist() == [[True, False, False, True], [False, True, True, False]]
+    nc, _ = find_contacts(
+        world, verts, counts, aabbs, np.zeros((0, 3)), surface, corners, 0.01, out
+    )
+    assert nc >= 2
+    np.testing.assert_allclose(out[:nc, 1:3], np.tile([0.0, 1.0], (nc, 1)), atol=1e-9)

@@ -221,6 +221,36 @@ def test_frictionless_contact_solves_lcps_of_size_n_contacts() -> None:
     assert np.all(size[contacts > 0] == 4 * contacts[contacts > 0])
 
 
+def test_a_seam_in_a_floor_does_not_catch_a_sliding_box() -> None:
+    """A floor cut in two pieces slides a box exactly as a one-piece floor does (reference:
+    the one-piece floor): the seam's edge and its top vertex are not surfaces of the solid,
+    so no ghost contact stops the box as it crosses (Box2D's "ghost collision")."""
+    whole = _floor_scene(0.3)
+    left = np.array([[-20.0, -2.0], [0.0, -2.0], [0.0, 0.0], [-20.0, 0.0]])
+    right = np.array([[0.0, -2.0], [20.0, -2.0], [20.0, 0.0], [0.0, 0.0]])
+    cut = dataclasses.replace(whole, obstacles=Obstacles((left, right), np.zeros((0, 3))))
+    start = (-3.0, 0.5, 0.0, 6.0, 0.0, 0.0)  # sliding right at 6, crosses x = 0 at ~0.6 s
+    runs = [DynamicLevel(scene).simulate(start, duration=1.5) for scene in (whole, cut)]
+    np.testing.assert_allclose(runs[1].states, runs[0].states, atol=1e-9)
+    assert runs[0].final[0] > 1.0  # it did cross the seam
+
+
+@pytest.mark.parametrize("mu", [0.0, 0.3, 0.7])
+def test_warm_start_finds_the_same_motion_where_the_motion_is_unique(mu: float) -> None:
+    """On the incline (a unique solution: one face, no wedging) the previous step's basis,
+    verified, reproduces Lemke's trajectory. Sliding, most steps use it; sticking, the basis
+    of two redundant contacts is singular, so Lemke (which handles it) solves every step."""
+    scene = _with_friction(_incline(), mu)
+    start = DynamicLevel(scene).state_of_pose(scene.start("resting"))
+    warm, cold = (
+        DynamicLevel(scene, warm_start=w).simulate(start, duration=1.0) for w in (True, False)
+    )
+    np.testing.assert_allclose(warm.states, cold.states, atol=1e-9)
+    if mu < 0.5:
+        assert warm.summary["warm_starts"] > 0.9 * warm.summary["lcp_solves"]
+    assert cold.summary["warm_starts"] == 0
+
+
 # --- robustness -----------------------------------------------------------------------------
 
 
