@@ -29,6 +29,8 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable
+from functools import partial
+from typing import TypeVar
 
 import numpy as np
 
@@ -40,6 +42,7 @@ from feeders.scene import Scene
 from feeders.scene_yaml import load_scene
 from validity.dynamic import DynamicLevel
 
+T = TypeVar("T")
 INCLINE = REPO_ROOT / "experiments" / "scenes" / "incline.yaml"
 PHI = math.radians(30.0)
 
@@ -48,7 +51,7 @@ def _incline(mu: float) -> Scene:
     return dataclasses.replace(load_scene(INCLINE), friction=mu)
 
 
-def _timed(run: Callable[[], object], repeats: int) -> tuple[list[float], object]:
+def _timed(run: Callable[[], T], repeats: int) -> tuple[list[float], T]:
     """Seconds per call of ``run`` over ``repeats`` calls, after one warm call; last result."""
     result = run()
     times = []
@@ -76,7 +79,7 @@ def bench_incline(repeats: int) -> dict:
         scene = _incline(mu)
         for h in (1e-3, 1e-4):
             level = DynamicLevel(scene, step=h)
-            times, run = _timed(lambda lv=level, s=scene, d=duration: _slide(lv, s, d), repeats)
+            times, run = _timed(partial(_slide, level, scene, duration), repeats)
             start = level.state_of_pose(scene.start("resting"))
             steps = len(run.states) - 1
             out["partfeeder"][f"mu={mu},h={h:g}"] = {
@@ -148,7 +151,7 @@ def bench_skips(repeats: int) -> dict:
     for skip in (True, False):
         level = DynamicLevel(floor, skip_free=skip)
         start = (5.0, 12.5, 0.3, 0.0, 0.0, 0.0)  # above the wedge: 0.5 s of free fall
-        times, run = _timed(lambda lv=level, s=start: lv.simulate(s, duration=0.5), repeats)
+        times, run = _timed(partial(level.simulate, start, duration=0.5), repeats)
         out[f"free_fall_skip={skip}"] = {
             "us_per_step": _stats([t / 500 * 1e6 for t in times]),
             "contact_searches": run.summary["contact_searches"],
@@ -158,7 +161,7 @@ def bench_skips(repeats: int) -> dict:
     for mu in (0.0, 0.3):
         scene = _incline(mu)
         level = DynamicLevel(scene)
-        times, run = _timed(lambda lv=level, s=scene: _slide(lv, s, 1.0), repeats)
+        times, run = _timed(partial(_slide, level, scene, 1.0), repeats)
         sizes = run.telemetry[:, 6]
         out[f"incline_mu={mu}"] = {
             "us_per_step": _stats([t / 1000 * 1e6 for t in times]),
@@ -169,8 +172,8 @@ def bench_skips(repeats: int) -> dict:
         level = DynamicLevel(scene)
         if not broad:
             _no_broad_phase(level)
-        start = level.state_of_pose(scene.start("heavy_trailing"))
-        times, run = _timed(lambda lv=level, s=start: lv.simulate(s, duration=3.0), repeats)
+        begin = level.state_of_pose(scene.start("heavy_trailing"))
+        times, run = _timed(partial(level.simulate, begin, duration=3.0), repeats)
         out[f"table3_broad_phase={broad}"] = {
             "us_per_step": _stats([t / 3000 * 1e6 for t in times]),
             "final": [round(v, 12) for v in run.final[:3]],

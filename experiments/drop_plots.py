@@ -27,7 +27,7 @@ def _frame(ax: plt.Axes, scene: Scene, r: DropResult, upto: int) -> None:
     states = r.trajectory.states
     colour = ORIENTATION_COLOURS.get(r.orientation, "#1f77b4")
     ax.plot(states[: upto + 1, 0], states[: upto + 1, 1], color=colour, lw=1.4, zorder=6)
-    draw_part(ax, scene.part, states[upto, :3])
+    draw_part(ax, scene.part, tuple(states[upto, :3]))
 
 
 def drop_strip(scene: Scene, results: Sequence[DropResult], path: str | Path) -> Path:

@@ -124,3 +124,46 @@ def test_draw_writes_a_picture(tmp_path, capsys):
     target = tmp_path / "pics" / "fig7a.png"
     assert run(["draw", "--design", "fig7a", "--out", str(target)]) == 0
     assert target.read_bytes()[:8] == PNG_MAGIC
+
+
+def test_simulate_reports_both_drops_and_writes_strip_animation_and_json(tmp_path):
+    """``partfeeder simulate``: a row per entry orientation (goal, why it ended, T, overlap,
+    energy rise, LCP failures) and Eq. 10's objective; the strip (PNG), the animation (GIF)
+    and the summaries (JSON) in --out; nothing on stderr."""
+    out = tmp_path / "drop"
+    proc = _cli("simulate", "--design", "table3", "--time", "4", "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert "heavy_leading" in proc.stdout and "heavy_trailing" in proc.stdout
+    assert "Eq. 10 objective" in proc.stdout
+    assert (out / "drop_table3.png").read_bytes()[:8] == PNG_MAGIC
+    assert (out / "drop_table3.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+    runs = json.loads((out / "drop_table3.json").read_text())["runs"]
+    assert [r["orientation"] for r in runs] == ["heavy_leading", "heavy_trailing"]
+    for r in runs:
+        assert r["lcp_failures"] == 0 and r["energy_rise"] <= 1e-9
+        assert 0.0 < r["T_s"] <= 4.0
+
+
+def test_simulate_json_on_a_free_form_scene(capsys):
+    """The incline scene from YAML: its one start, the box slides into the goal box."""
+    code = run(["simulate", "--scene", str(ROOT / "experiments/scenes/incline.yaml"), "--json"])
+    assert code == 0
+    report = json.loads(capsys.readouterr().out)
+    (only,) = report["runs"]
+    assert only["orientation"] == "resting"
+    assert only["end"] == "crossed" and only["success"]
+
+
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["simulate", "--step", "0"], "--step = 0.0 is outside the allowed range"),
+        (["simulate", "--time", "-1"], "--time = -1.0 is outside the allowed range"),
+        (["simulate", "--orientation", "sideways"], "--orientation 'sideways' is not a start"),
+    ],
+)
+def test_simulate_bad_input_is_one_line_and_exit_2(capsys, args, message):
+    assert run(args) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1
