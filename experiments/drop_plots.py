@@ -11,7 +11,7 @@ from matplotlib import animation
 from matplotlib import pyplot as plt
 
 from experiments.passive_drop import DropResult
-from experiments.plotting import ORIENTATION_COLOURS, draw_part, draw_scene
+from experiments.plotting import ORIENTATION_COLOURS, draw_part, draw_scene, save_figure
 from feeders.scene import Scene
 
 SNAPSHOTS = 3  # as Figs. 10 and 11
@@ -60,11 +60,7 @@ def drop_strip(scene: Scene, results: Sequence[DropResult], path: str | Path) ->
             fontsize=8,
         )
     fig.suptitle(f"{scene.name}: passive drop (dynamic level, Eq. 7)", fontsize=11)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def drop_animation(

@@ -28,6 +28,15 @@ LIGHT = "#f5cba7"
 ORIENTATION_COLOURS = {"heavy_leading": "#1f77b4", "heavy_trailing": "#9467bd"}
 
 
+def save_figure(fig: plt.Figure, path: str | Path, dpi: int = 100) -> Path:
+    """Lay out, write as PNG at ``path`` and close ``fig``; returns the path."""
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
+
+
 def part_outline(part: Peg, pose: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
     """World corners of the part's light half and heavy half at ``pose`` (each (4, 2))."""
     c, s = math.cos(pose[2]), math.sin(pose[2])
@@ -121,11 +130,7 @@ def plan_figure(scene: Scene, results: Sequence[PlanResult], path: str | Path) -
             fontsize=9,
         )
     fig.suptitle(f"{scene.name}", fontsize=11)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=110)
 
 
 def scene_figure(scenes: Sequence[Scene], titles: Sequence[str], path: str | Path) -> Path:
@@ -139,8 +144,4 @@ def scene_figure(scenes: Sequence[Scene], titles: Sequence[str], path: str | Pat
     for ax, scene, title in zip(axes.ravel(), scenes, titles, strict=False):
         draw_scene(ax, scene)
         ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
