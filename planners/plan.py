@@ -115,7 +115,7 @@ def fine_path(
             if inside is not None:
                 run = inside(state, controls[i], piece)
                 states.extend(run[1:])
-                state = level.propagate(state, controls[i], piece)
+                state = tuple(run[-1])  # what propagate returns, without running it again
                 continue
             for _ in range(split):
                 state = level.propagate(state, controls[i], piece / split)

@@ -31,6 +31,13 @@ VELOCITY_LIMIT = 20.0  # |vx|, |vy| (length/s) and |omega| (rad/s) of a valid st
 PENETRATION_TOLERANCE = 0.01  # deepest overlap (length) a valid dynamic state may have
 
 
+def _wrap_outside(yaw: np.ndarray) -> np.ndarray:
+    """Yaw wrapped into [-pi, pi) where it lies outside, untouched inside: a propagation
+    continued from its own result then repeats the same arithmetic (chained calls stay exact)."""
+    outside = (yaw < -math.pi) | (yaw >= math.pi)
+    return np.where(outside, (yaw + math.pi) % (2.0 * math.pi) - math.pi, yaw)
+
+
 @dataclass(frozen=True)
 class Trajectory:
     """A simulated run: states at ``times`` (rows x, y, theta, vx, vy, omega), per-step
@@ -116,14 +123,25 @@ class DynamicLevel:
         """The part at rest in ``pose``."""
         return (float(pose[0]), float(pose[1]), float(pose[2]), 0.0, 0.0, 0.0)
 
-    def clearance(self, state: Sequence[float]) -> float:
-        """Smallest signed distance to the obstacles (negative: penetration depth)."""
+    def _clearance(self, state: Sequence[float], stop_below: float) -> float:
         a = self.arrays
         return float(
             clearance_at_pose(
-                a.body, state[0], state[1], state[2], a.verts, a.counts, a.aabbs, a.circles, -np.inf
+                a.body,
+                state[0],
+                state[1],
+                state[2],
+                a.verts,
+                a.counts,
+                a.aabbs,
+                a.circles,
+                stop_below,
             )
         )
+
+    def clearance(self, state: Sequence[float]) -> float:
+        """Smallest signed distance to the obstacles (negative: penetration depth)."""
+        return self._clearance(state, -np.inf)
 
     def is_valid(self, state: Sequence[float]) -> bool:
         """Centre of mass in bounds, speeds within ``velocity_limit`` and penetration within
@@ -133,14 +151,8 @@ class DynamicLevel:
             return False
         if max(abs(state[3]), abs(state[4]), abs(state[5])) > self.velocity_limit:
             return False
-        a = self.arrays
         tol = -self.penetration_tolerance
-        return bool(
-            clearance_at_pose(
-                a.body, state[0], state[1], state[2], a.verts, a.counts, a.aabbs, a.circles, tol
-            )
-            >= tol
-        )
+        return self._clearance(state, tol) >= tol
 
     def _run(
         self,
@@ -197,17 +209,16 @@ class DynamicLevel:
         """The state after holding the wrench ``control`` for ``duration`` seconds (steps of h;
         stops early only if the centre of mass leaves the bounds)."""
         out, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=False)
-        if not -math.pi <= out[2] < math.pi:  # wrap only when needed: chained calls stay exact
-            out[2] = (out[2] + math.pi) % (2.0 * math.pi) - math.pi
+        out[2] = _wrap_outside(out[2:3])[0]
         return tuple(float(v) for v in out)
 
     def propagate_path(
         self, state: Sequence[float], control: Sequence[float], duration: float
     ) -> np.ndarray:
-        """Every state of :meth:`propagate` (rows, start first; the last row is its result):
-        the one compiled run, so the states between are those the propagation visits."""
+        """Every state of :meth:`propagate` (rows, start first; the last row is its result,
+        bit for bit): the one compiled run, so the states between are those it visits."""
         _, _, _, traj, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=True)
-        traj[:, 2] = (traj[:, 2] + math.pi) % (2.0 * math.pi) - math.pi
+        traj[:, 2] = _wrap_outside(traj[:, 2])
         return traj
 
     def simulate(

@@ -108,30 +108,25 @@ def _jacobians(contacts: np.ndarray, nc: int, x: float, y: float, wn: np.ndarray
 
 
 @njit(cache=True)
-def _frictionless_lcp(wn, nc, minv, bias, vstar, B, b):
-    """B = W_n' M^-1 W_n, b = W_n' v* + bias (size n_c)."""
-    for i in range(nc):
-        b[i] = bias[i] + wn[0, i] * vstar[0] + wn[1, i] * vstar[1] + wn[2, i] * vstar[2]
-        for j in range(nc):
-            B[i, j] = (
-                wn[0, i] * minv[0] * wn[0, j]
-                + wn[1, i] * minv[1] * wn[1, j]
-                + wn[2, i] * minv[2] * wn[2, j]
-            )
-
-
-@njit(cache=True)
-def _friction_lcp(wn, wt, nc, mu, minv, bias, vstar, B, b):
-    """B and b of Eq. 7 for n_c contacts (size 4 n_c): unknowns p_n, p_f (+t, -t), s."""
-    m = 3 * nc
-    cols = np.empty((3, m))  # [W_n | W_f]
+def _columns(wn, wt, nc, frictional, cols) -> int:
+    """[W_n | W_f] into ``cols (3, 3 MAX_CONTACTS)``, W_f = (+t_i, -t_i) per contact; W_n
+    alone when frictionless. Returns the number of columns m."""
     for i in range(nc):
         for k in range(3):
             cols[k, i] = wn[k, i]
-            cols[k, nc + 2 * i] = wt[k, i]
-            cols[k, nc + 2 * i + 1] = -wt[k, i]
-    n = 4 * nc
+            if frictional:
+                cols[k, nc + 2 * i] = wt[k, i]
+                cols[k, nc + 2 * i + 1] = -wt[k, i]
+    return 3 * nc if frictional else nc
+
+
+@njit(cache=True)
+def _contact_lcp(cols, m, nc, frictional, mu, minv, bias, vstar, B, b) -> int:
+    """B and b of Eq. 7 (size 4 n_c, unknowns p_n, p_f, s), or of the frictionless problem
+    (size n_c, unknowns p_n) when ``frictional`` is False. Returns the size."""
+    n = 4 * nc if frictional else nc
     for i in range(n):
+        b[i] = 0.0
         for j in range(n):
             B[i, j] = 0.0
     for i in range(m):
@@ -144,21 +139,21 @@ def _friction_lcp(wn, wt, nc, mu, minv, bias, vstar, B, b):
             )
     for i in range(nc):
         b[i] += bias[i]
-        b[m + i] = 0.0
-        for s in range(2):
-            B[nc + 2 * i + s, m + i] = 1.0  # E
-            B[m + i, nc + 2 * i + s] = -1.0  # -E'
-        B[m + i, i] = mu  # U
+        if frictional:
+            for s in range(2):
+                B[nc + 2 * i + s, m + i] = 1.0  # E
+                B[m + i, nc + 2 * i + s] = -1.0  # -E'
+            B[m + i, i] = mu  # U
+    return n
 
 
 @njit(cache=True)
-def _apply(cols_w, z, offset, sign, count, minv, v):
-    """v += M^-1 sum_i sign * W[:, i] z[offset + i * stride] (helper for the impulse)."""
-    for i in range(count):
-        zi = z[offset + i] * sign
-        v[0] += minv[0] * cols_w[0, i] * zi
-        v[1] += minv[1] * cols_w[1, i] * zi
-        v[2] += minv[2] * cols_w[2, i] * zi
+def _apply_impulse(cols, m, z, minv, v) -> None:
+    """v += M^-1 [W_n | W_f] (p_n, p_f)."""
+    for i in range(m):
+        v[0] += minv[0] * cols[0, i] * z[i]
+        v[1] += minv[1] * cols[1, i] * z[i]
+        v[2] += minv[2] * cols[2, i] * z[i]
 
 
 @njit(cache=True)
@@ -235,6 +230,7 @@ def simulate_kernel(
     contacts = np.empty((MAX_CONTACTS, 5))
     wn = np.empty((3, MAX_CONTACTS))
     wt = np.empty((3, MAX_CONTACTS))
+    cols = np.empty((3, 3 * MAX_CONTACTS))
     nmax = 4 * MAX_CONTACTS
     B = np.zeros((nmax, nmax))
     b = np.zeros(nmax)
@@ -280,11 +276,8 @@ def simulate_kernel(
                     bias[i] = max(contacts[i, 0] / h, -push_cap)
                 v[0], v[1], v[2] = vstar[0], vstar[1], vstar[2]
                 frictional = mu > 0.0
-                size = 4 * nc if frictional else nc
-                if frictional:
-                    _friction_lcp(wn, wt, nc, mu, minv, bias, vstar, B, b)
-                else:
-                    _frictionless_lcp(wn, nc, minv, bias, vstar, B, b)
+                m = _columns(wn, wt, nc, frictional, cols)
+                size = _contact_lcp(cols, m, nc, frictional, mu, minv, bias, vstar, B, b)
                 summary[S_LCPS] += 1
                 warm = False
                 if warm_start and size == basic_size:
@@ -297,11 +290,10 @@ def simulate_kernel(
                     status, pivots, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
                 solved = status == LCP_SOLVED or status == LCP_REGULARISED or status == WARM
                 if not solved and frictional:
-                    size = nc
-                    _frictionless_lcp(wn, nc, minv, bias, vstar, B, b)
+                    m = _columns(wn, wt, nc, False, cols)
+                    size = _contact_lcp(cols, m, nc, False, mu, minv, bias, vstar, B, b)
                     st2, pv2, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
                     pivots += pv2
-                    frictional = False
                     status = FALLBACK_FRICTIONLESS if st2 <= LCP_REGULARISED else FAILED
                 elif not solved:
                     status = FAILED
@@ -316,13 +308,7 @@ def simulate_kernel(
                         summary[S_FALLBACKS] += 1
                     elif status == LCP_REGULARISED:
                         summary[S_REGULARISED] += 1
-                    _apply(wn, z, 0, 1.0, nc, minv, v)
-                    if frictional:
-                        for i in range(nc):
-                            zt = z[nc + 2 * i] - z[nc + 2 * i + 1]
-                            v[0] += minv[0] * wt[0, i] * zt
-                            v[1] += minv[1] * wt[1, i] * zt
-                            v[2] += minv[2] * wt[2, i] * zt
+                    _apply_impulse(cols, m, z, minv, v)
                 vx, vy, om = v[0], v[1], v[2]
                 summary[S_MAX_PIVOTS] = max(summary[S_MAX_PIVOTS], pivots)
                 summary[S_MAX_ALPHA] = max(summary[S_MAX_ALPHA], reg)

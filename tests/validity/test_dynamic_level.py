@@ -345,3 +345,14 @@ def test_telemetry_records_every_contact_step() -> None:
     assert np.all(run.telemetry[:, T_STATUS] >= 0)  # always in contact: an LCP every step
     assert run.summary["lcp_solves"] == len(run.telemetry)
     assert run.summary["max_residual"] < 1e-9
+
+
+def test_propagate_path_ends_exactly_where_propagate_does() -> None:
+    """The states between come from the same run: its last row is propagate's result, bit for
+    bit, also when the yaw wraps past pi on the way."""
+    scene = _table3()
+    level = DynamicLevel(scene)
+    state = (*scene.start("heavy_trailing"), 0.0, 0.0, 9.0)  # spinning: yaw passes pi
+    path = level.propagate_path(state, (0.0, 0.0, 0.0), 0.4)
+    assert len(path) == round(0.4 / level.step) + 1
+    assert tuple(path[-1]) == level.propagate(state, (0.0, 0.0, 0.0), 0.4)
