@@ -232,6 +232,7 @@ def build_feeder(
     gravity: tuple[float, float] = (0.0, -9.81),
     name: str = "feeder",
     roof_rise: float = 0.0,
+    restitution: float = 0.3,
 ) -> Scene:
     """The scene of the feeder with this design, or :class:`DegenerateDesign` with a reason.
 
@@ -334,6 +335,7 @@ def build_feeder(
         goal=goal,
         gravity=gravity,
         friction=friction,
+        restitution=restitution,
         inputs=inputs or InputSet(),
         design=design,
         outline=outline,

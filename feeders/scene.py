@@ -107,7 +107,10 @@ class InputSet:
 class Scene:
     """Obstacles, the part, physical constants, start poses, goal and the state bounds.
 
-    ``bounds`` are ``(x_min, x_max, y_min, y_max)`` for the centre of mass. ``outline`` is the
+    ``bounds`` are ``(x_min, x_max, y_min, y_max)`` for the centre of mass. ``friction`` is
+    the Coulomb coefficient mu of every contact; ``restitution`` the coefficient e of the
+    kinematic level's impacts (Stronge's energetic one: 0 plastic, 1 elastic; the dynamic
+    level of the paper has none). ``outline`` is the
     free interior of a parametric feeder, a CCW polygon used for drawing (None for free-form
     scenes); ``design`` is the feeder's design when there is one.
     """
@@ -121,8 +124,17 @@ class Scene:
     gravity: tuple[float, float] = (0.0, -9.81)
     friction: float = 0.3
     inputs: InputSet = field(default_factory=InputSet)
+    restitution: float = 0.3
     design: DesignParameters | None = None
     outline: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.friction) and 0.0 <= self.friction <= 10.0):
+            raise ValueError(f"friction = {self.friction!r} is outside the allowed range [0, 10]")
+        if not (math.isfinite(self.restitution) and 0.0 <= self.restitution <= 1.0):
+            raise ValueError(
+                f"restitution = {self.restitution!r} is outside the allowed range [0, 1]"
+            )
 
     def start(self, orientation: str) -> Pose:
         try:

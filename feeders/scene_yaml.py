@@ -6,6 +6,7 @@ Two kinds, chosen by which key is present::
       preset: table3             # or: design: {a: 1.1, b: 1.1086, ..., f: [x, y], g: [x, y]}
     part: {length: 2.0, width: 1.0, mass: 1.0, heavy_fraction: 0.75}
     friction: 0.3
+    restitution: 0.3             # the kinematic level's impacts (0 plastic .. 1 elastic)
     gravity: [0.0, -9.81]
     inputs: {max_speed: 1.0, max_turn: 1.0, max_force: 5.0, max_torque: 1.0}
 
@@ -16,7 +17,7 @@ Two kinds, chosen by which key is present::
     starts: {drop: [0, 4, 0]}    # name: [x, y, yaw]
     goal: {x: [-1, 1], y: [0, 1], yaw: 0.0, yaw_tol: 0.3}
 
-Both may set ``name``, ``part``, ``friction``, ``gravity`` and ``inputs``.
+Both may set ``name``, ``part``, ``friction``, ``restitution``, ``gravity`` and ``inputs``.
 """
 
 from __future__ import annotations
@@ -48,6 +49,7 @@ _TOP_KEYS = {
     "goal",
     "part",
     "friction",
+    "restitution",
     "gravity",
     "inputs",
 }
@@ -169,6 +171,7 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     name = str(data.get("name", name))
     part = _part(data.get("part"))
     friction = _number(data.get("friction", 0.3), "friction", 0.0, 10.0)
+    restitution = _number(data.get("restitution", 0.3), "restitution", 0.0, 1.0)
     gravity = tuple(_numbers(data.get("gravity", [0.0, -9.81]), "gravity", 2))
     inputs = _inputs(data.get("inputs"))
     if ("feeder" in data) == ("obstacles" in data):
@@ -180,7 +183,15 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
         if extra:
             raise SceneError(f"scene: {extra} are derived from the feeder design; remove them")
         try:
-            return build_feeder(_design(data["feeder"]), part, inputs, friction, gravity, name)  # type: ignore[arg-type]
+            return build_feeder(
+                _design(data["feeder"]),
+                part,
+                inputs,
+                friction,
+                gravity,  # type: ignore[arg-type]
+                name,
+                restitution=restitution,
+            )
         except DegenerateDesign as exc:
             raise SceneError(f"feeder: degenerate design: {exc}") from None
     for key in ("bounds", "starts", "goal"):
@@ -202,6 +213,7 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
         goal=_goal(data["goal"]),
         gravity=gravity,  # type: ignore[arg-type]
         friction=friction,
+        restitution=restitution,
         inputs=inputs,
     )
 

@@ -8,8 +8,9 @@ from __future__ import annotations
 
 from validity.dynamic import DynamicLevel
 from validity.geometric import GeometricLevel
+from validity.kinematic import KinematicLevel
 
-LEVELS = {"geometric": GeometricLevel, "dynamic": DynamicLevel}
+LEVELS = {"geometric": GeometricLevel, "kinematic": KinematicLevel, "dynamic": DynamicLevel}
 
 
 def make_level(name: str, scene, **options):

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from feeders.scene import Scene
-from validity.geometry_kernel import clearance_at_pose
 from validity.scene_arrays import SceneArrays
 from validity.stewart_trinkle import (
     END_REASONS,
@@ -123,25 +122,9 @@ class DynamicLevel:
         """The part at rest in ``pose``."""
         return (float(pose[0]), float(pose[1]), float(pose[2]), 0.0, 0.0, 0.0)
 
-    def _clearance(self, state: Sequence[float], stop_below: float) -> float:
-        a = self.arrays
-        return float(
-            clearance_at_pose(
-                a.body,
-                state[0],
-                state[1],
-                state[2],
-                a.verts,
-                a.counts,
-                a.aabbs,
-                a.circles,
-                stop_below,
-            )
-        )
-
     def clearance(self, state: Sequence[float]) -> float:
         """Smallest signed distance to the obstacles (negative: penetration depth)."""
-        return self._clearance(state, -np.inf)
+        return self.arrays.clearance(state[0], state[1], state[2])
 
     def is_valid(self, state: Sequence[float]) -> bool:
         """Centre of mass in bounds, speeds within ``velocity_limit`` and penetration within
@@ -152,7 +135,7 @@ class DynamicLevel:
         if max(abs(state[3]), abs(state[4]), abs(state[5])) > self.velocity_limit:
             return False
         tol = -self.penetration_tolerance
-        return self._clearance(state, tol) >= tol
+        return self.arrays.clearance(state[0], state[1], state[2], stop_below=tol) >= tol
 
     def _run(
         self,

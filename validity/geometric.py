@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from feeders.scene import Scene
-from validity.geometry_kernel import clearance_at_pose, penetrates, pose_vertices
+from validity.geometry_kernel import penetrates, pose_vertices
 from validity.scene_arrays import SceneArrays
 
 DEFAULT_STEP = 0.01  # h (s): with |u| <= 1 a step moves a corner by < 0.03, far below a wall
@@ -92,11 +92,7 @@ class GeometricLevel:
 
     def clearance(self, state: Sequence[float]) -> float:
         """Smallest signed distance to an obstacle (negative: penetration depth)."""
-        return float(
-            clearance_at_pose(
-                self.arrays.body, state[0], state[1], state[2], *self._geometry[1:], -np.inf
-            )
-        )
+        return self.arrays.clearance(state[0], state[1], state[2])
 
     def propagate(
         self, state: Sequence[float], control: Sequence[float], duration: float

@@ -8,7 +8,7 @@ import numpy as np
 
 from feeders.scene import Scene
 from validity.contact_kernel import corner_vertices, surface_edges
-from validity.geometry_kernel import polygon_aabbs
+from validity.geometry_kernel import clearance_at_pose, polygon_aabbs
 
 
 @dataclass(frozen=True)
@@ -45,4 +45,14 @@ class SceneArrays:
             corners=corner_vertices(
                 np.ascontiguousarray(verts), np.asarray(counts, dtype=np.int64)
             ),
+        )
+
+    def clearance(self, x: float, y: float, yaw: float, stop_below: float = -np.inf) -> float:
+        """Smallest signed distance (length) from the part at pose ``(x, y, yaw)`` to the
+        obstacles (negative: penetration depth); it may stop at the first value below
+        ``stop_below`` (``-inf``: the exact minimum)."""
+        return float(
+            clearance_at_pose(
+                self.body, x, y, yaw, self.verts, self.counts, self.aabbs, self.circles, stop_below
+            )
         )

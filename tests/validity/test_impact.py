@@ -1,0 +1,219 @@
+"""The impact law of the kinematic level (Algorithm 2's Imp) as a specification.
+
+References: hand-worked impacts of a body struck at its centre of mass (K = I / m, so slip and
+stick have closed forms); a plain-Python integration of Routh's impact equations in 10^5
+small increments of the normal impulse (no phases, no closed forms), for impacts that stop,
+stick or reverse slip; and the conservation laws of an impulse at one point: the momentum
+changes by the impulse, the angular momentum about the contact point does not change, the
+kinetic energy does not rise, and the impulse lies in the friction cone.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from validity.impact import (
+    IMPACT_DONE,
+    IMPACT_NONE,
+    collide,
+    contact_inverse_inertia,
+    contact_velocity,
+    planar_impact,
+    resolve_impacts,
+)
+
+M, I = 1.0, 77.0 / 300.0  # the default peg's mass and moment of inertia
+
+
+def _energy(vel: np.ndarray, mass: float = M, inertia: float = I) -> float:
+    return 0.5 * mass * (vel[0] ** 2 + vel[1] ** 2) + 0.5 * inertia * vel[2] ** 2
+
+
+# --------------------------------------------------------------------------- hand-worked
+
+
+@pytest.mark.parametrize("e", [0.0, 0.3, 0.5, 1.0])
+def test_frictionless_head_on_impact_reverses_the_normal_velocity_scaled_by_e(e: float) -> None:
+    """Struck along the line through its centre of mass (r parallel to n): u_n+ = -e u_n-,
+    the tangential velocity and the spin unchanged."""
+    vel = np.array([0.4, -2.0, 0.0])
+    status = collide(vel, 0.0, -0.7, 0.0, 1.0, M, I, 0.0, e)  # floor below the centre
+    assert status == IMPACT_DONE
+    assert vel[1] == pytest.approx(2.0 * e, abs=1e-12)
+    assert vel[0] == pytest.approx(0.4, abs=1e-12) and vel[2] == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+def test_frictionless_off_centre_impact_obeys_newtons_law_at_the_contact(e: float) -> None:
+    """Without friction every restitution law agrees: the contact point's normal velocity is
+    reversed and scaled by e, however the body spins up."""
+    vel = np.array([0.0, -1.5, 0.8])
+    rx, ry = 0.7, -0.5
+    before = contact_velocity(vel, rx, ry, 0.0, 1.0)
+    collide(vel, rx, ry, 0.0, 1.0, M, I, 0.0, e)
+    assert contact_velocity(vel, rx, ry, 0.0, 1.0) == pytest.approx(-e * before, abs=1e-12)
+
+
+def test_oblique_impact_that_slips_throughout_loses_mu_1_plus_e_u_n() -> None:
+    """Struck at the centre of mass, u_t = 2 > mu (1 + e) |u_n| = 0.45: slip never stops and
+    u_t+ = u_t - mu (1 + e) |u_n| = 1.55, u_n+ = -e u_n (the slip branch)."""
+    pn, pt, status = planar_impact(-1.0, 2.0, 1 / M, 0.0, 1 / M, 0.3, 0.5)
+    assert status == IMPACT_DONE
+    assert pn == pytest.approx(1.5 * M, abs=1e-12)
+    assert pt == pytest.approx(-0.3 * 1.5 * M, abs=1e-12)
+    assert 2.0 + pt / M == pytest.approx(1.55, abs=1e-12)
+
+
+def test_oblique_impact_that_sticks_ends_with_no_slip() -> None:
+    """u_t = 0.2 < mu (1 + e) |u_n|: slip stops at p_n = u_t / mu = 0.667 m, before the impact
+    ends at 1.5 m, and the contact then sticks (the stick branch): u_t+ = 0, u_n+ = -e u_n."""
+    pn, pt, _ = planar_impact(-1.0, 0.2, 1 / M, 0.0, 1 / M, 0.3, 0.5)
+    assert pn == pytest.approx(1.5 * M, abs=1e-12)
+    assert pt == pytest.approx(-0.2 * M, abs=1e-12)
+
+
+def test_a_separating_contact_gets_no_impulse() -> None:
+    assert planar_impact(0.3, 1.0, 1.0, 0.2, 1.0, 0.5, 0.5) == (0.0, 0.0, IMPACT_NONE)
+
+
+# --------------------------------------------------------------------------- reference
+
+
+def _routh_reference(un, ut, knn, knt, ktt, mu, e, n=100_000):
+    """Routh's equations du = K dp, dp_t = -mu sign(u_t) dp_n (or the stick impulse when
+    the slip would change sign within an increment and stick is possible), integrated in
+    equal increments of p_n; restitution ends when the normal work done in it reaches
+    -e^2 times the work in compression. The total normal impulse is found first by a coarse
+    pass, then the increment is set to 1/n of it."""
+
+    def run(dp: float, limit: int):
+        pn = pt = w = wc = 0.0
+        u_n, u_t = un, ut
+        compressing = True
+        for _ in range(limit):
+            if abs(u_t) > 1e-15:
+                s = math.copysign(1.0, u_t)
+                dpt = -mu * s * dp
+                new_t = u_t + knt * dp + ktt * dpt
+                if new_t * s < 0.0 and mu * ktt >= abs(knt):  # slip stops inside: stick
+                    dpt = -(u_t + knt * dp) / ktt
+            elif mu * ktt >= abs(knt):
+                dpt = -knt / ktt * dp
+            else:
+                dpt = -mu * math.copysign(1.0, knt) * dp
+            new_n = u_n + knn * dp + knt * dpt
+            w += 0.5 * (u_n + new_n) * dp
+            u_t += knt * dp + ktt * dpt
+            u_n = new_n
+            pn += dp
+            pt += dpt
+            if compressing and u_n >= 0.0:
+                compressing, wc = False, w
+                if e == 0.0:
+                    break
+            if not compressing and w - wc >= -e * e * wc:
+                break
+        return pn, pt
+
+    coarse, _ = run(1e-3, 10**7)
+    return run(coarse / n, 10 * n)
+
+
+IMPACTS = [  # (u_n, u_t, r_x, r_y, mu, e): a peg corner striking a floor (n = (0, 1))
+    (-1.0, 0.5, 0.8, -0.5, 0.3, 0.5),  # slip stops, then sticks
+    (-1.0, 0.2, 0.8, -0.5, 0.1, 0.8),  # slip stops; stick impossible: slip reverses
+    (-1.0, -0.3, -0.8, -0.5, 0.6, 0.0),  # plastic
+    (-2.0, 1.0, 0.3, -0.5, 1.0, 1.0),  # elastic, sticky
+    (-0.5, 3.0, 0.8, -0.1, 0.2, 0.7),  # slips throughout
+]
+
+
+@pytest.mark.parametrize("un,ut,rx,ry,mu,e", IMPACTS)
+def test_phases_match_a_fine_integration_of_routh_equations(un, ut, rx, ry, mu, e) -> None:
+    """Exact phase-by-phase integration agrees with 10^5 small increments to 1e-4 (the
+    reference's own first-order error at this increment)."""
+    knn, knt, ktt = contact_inverse_inertia(rx, ry, 0.0, 1.0, M, I)
+    pn, pt, status = planar_impact(un, ut, knn, knt, ktt, mu, e)
+    ref_n, ref_t = _routh_reference(un, ut, knn, knt, ktt, mu, e)
+    assert status == IMPACT_DONE
+    assert pn == pytest.approx(ref_n, abs=1e-4)
+    assert pt == pytest.approx(ref_t, abs=1e-4)
+
+
+def test_the_reference_cases_cover_slip_reversal() -> None:
+    """Case 2 has |K_nt| > mu K_tt (stick impossible) and an impulse that drives u_t through
+    0 (u_t K_nt < 0): the contact ends the impact slipping the other way."""
+    un, ut, rx, ry, mu, e = IMPACTS[1]
+    knn, knt, ktt = contact_inverse_inertia(rx, ry, 0.0, 1.0, M, I)
+    assert abs(knt) > mu * ktt and ut * knt < 0.0
+    pn, pt, _ = planar_impact(un, ut, knn, knt, ktt, mu, e)
+    assert (ut + knt * pn + ktt * pt) * ut < 0.0
+
+
+# --------------------------------------------------------------------------- laws
+
+
+unit = st.floats(-1.0, 1.0)
+impacts = st.tuples(
+    st.floats(-3.0, 3.0),  # vx
+    st.floats(-3.0, 3.0),  # vy
+    st.floats(-5.0, 5.0),  # omega
+    st.floats(-1.0, 1.0),  # rx
+    st.floats(-1.0, 1.0),  # ry
+    st.floats(0.0, 2 * math.pi),  # normal angle
+    st.floats(0.0, 2.0),  # mu
+    st.floats(0.0, 1.0),  # e
+    st.floats(0.05, 5.0),  # inertia
+)
+
+
+@settings(max_examples=400, deadline=None)
+@given(impacts)
+def test_an_impact_conserves_what_it_must_and_never_gains_energy(case) -> None:
+    """For any body state, contact point, normal, mu in [0, 2] and e in [0, 1]: momentum
+    changes by exactly the impulse (so only along it), angular momentum about the contact
+    point is unchanged, the impulse is in the friction cone with p_n >= 0, the contact does
+    not approach afterwards, and the kinetic energy does not rise."""
+    vx, vy, w, rx, ry, angle, mu, e, inertia = case
+    nx, ny = math.cos(angle), math.sin(angle)
+    vel = np.array([vx, vy, w])
+    before = vel.copy()
+    collide(vel, rx, ry, nx, ny, M, inertia, mu, e)
+    px, py = M * (vel[0] - before[0]), M * (vel[1] - before[1])  # the impulse applied
+
+    # angular momentum about the contact point: I omega + m (c - p) x v, c - p = -r
+    def ang(v):
+        return inertia * v[2] - M * (rx * v[1] - ry * v[0])
+
+    assert ang(vel) == pytest.approx(ang(before), abs=1e-9)
+    pn, pt = px * nx + py * ny, -px * ny + py * nx
+    assert pn >= -1e-12
+    assert abs(pt) <= mu * pn + 1e-9
+    assert contact_velocity(vel, rx, ry, nx, ny) >= -1e-9
+    assert _energy(vel, M, inertia) <= _energy(before, M, inertia) + 1e-9
+
+
+def test_a_flat_landing_resolved_contact_by_contact_leaves_no_corner_approaching() -> None:
+    """The peg landing flat on a floor touches at two corners at once. Sequential impacts
+    leave neither corner approaching, add no energy, and (frictionless, plastic) remove all
+    downward momentum without making the peg spin up more than the first impact does."""
+    body = np.array([[-1.0, -0.5], [1.0, -0.5]])  # the two lower corners, centre at origin
+    contacts = np.zeros((12, 5))
+    for i, (bx, by) in enumerate(body):
+        contacts[i] = (0.0, 0.0, 1.0, bx, by)
+    for mu, e in [(0.0, 0.0), (0.3, 0.0), (0.3, 0.5), (1.0, 1.0)]:
+        vel = np.array([0.2, -1.0, 0.0])
+        before = _energy(vel)
+        count = resolve_impacts(vel, 0.0, 0.0, contacts, 2, 1e-4, M, I, mu, e, 1e-12, 64)
+        assert count >= 1
+        for bx, by in body:
+            assert contact_velocity(vel, bx, by, 0.0, 1.0) >= -1e-12
+        assert _energy(vel) <= before + 1e-12
+        if e == 0.0 and mu == 0.0:
+            assert vel[1] == pytest.approx(0.0, abs=1e-9)
+            assert vel[0] == pytest.approx(0.2, abs=1e-12)

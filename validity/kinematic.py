@@ -1,0 +1,172 @@
+"""The kinematic level (paper Eq. 8, Algorithm 2): velocity inputs, impulses at collisions.
+
+State: pose and velocity ``(x, y, yaw, vx, vy, omega)`` of the part's centre of mass; the
+velocity is the one the part had at the end of the last step (after any impact). Input: a
+velocity ``u = (vx, vy, omega)`` from the scene's bounded set U (``inputs.max_speed``,
+``inputs.max_turn``). Each step of h the part moves with ``v = u``; a collision stops the
+motion at the time of impact, the impact law (Routh's method with Coulomb friction
+``scene.friction`` and Stronge's restitution ``scene.restitution``,
+:mod:`validity.impact`) changes the velocity by ``M^-1 Imp``, and the part goes on with it
+for the rest of the step (:mod:`validity.impulse_stepper`). Non-penetration is exact:
+psi_n(q) >= 0 after every step, and no wall is tunnelled at any speed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from feeders.scene import Scene
+from validity.impulse_stepper import (
+    END_REASONS,
+    SUMMARY_FIELDS,
+    TELEMETRY_COLUMNS,
+    kinematic_kernel,
+)
+from validity.scene_arrays import SceneArrays
+
+DEFAULT_STEP = 0.01  # h (s), as the geometric level: the impacts make the result exact in h
+CONTACT_BAND = 1e-4  # gap (length) at which the part touches; advances stop at half of it
+MAX_IMPACTS = 32  # sequential impacts per collision before the part is stopped (a jam)
+
+
+@dataclass(frozen=True)
+class KinematicRun:
+    """One propagation: states (rows x, y, yaw, vx, vy, omega, start first), per-step
+    telemetry (columns ``TELEMETRY_COLUMNS``), totals (``SUMMARY_FIELDS``) and why it ended."""
+
+    states: np.ndarray = field(repr=False)
+    telemetry: np.ndarray = field(repr=False)
+    summary: dict
+    end: str
+    h: float
+
+    @property
+    def final(self) -> np.ndarray:
+        return self.states[-1]
+
+
+class KinematicLevel:
+    """Eq. 8 with Algorithm 2's impacts on a scene: validity, clearance and propagation."""
+
+    name = "kinematic"
+    state_dim = 6
+    control_dim = 3
+
+    def __init__(
+        self,
+        scene: Scene,
+        step: float = DEFAULT_STEP,
+        contact_band: float = CONTACT_BAND,
+        max_impacts: int = MAX_IMPACTS,
+    ):
+        for label, value, low, high in (
+            ("step h", step, 1e-6, 1.0),
+            ("contact band", contact_band, 1e-9, 0.01),
+        ):
+            if not (math.isfinite(value) and low <= value <= high):
+                raise ValueError(
+                    f"kinematic {label} = {value!r} is outside the allowed range [{low}, {high}]"
+                )
+        if not (isinstance(max_impacts, int) and 1 <= max_impacts <= 10_000):
+            raise ValueError(
+                f"kinematic max_impacts = {max_impacts!r} is outside the allowed range [1, 10000]"
+            )
+        self.scene = scene
+        self.step = float(step)
+        self.contact_band = float(contact_band)
+        self.max_impacts = int(max_impacts)
+        self.arrays = SceneArrays.from_scene(scene)
+        self.mass, self.inertia = scene.part.mass, scene.part.inertia
+        self.friction = float(scene.friction)
+        self.restitution = float(scene.restitution)
+
+    @property
+    def velocity_limit(self) -> float:
+        """Largest |vx|, |vy| or |omega| a propagated state can have: impacts never add kinetic
+        energy, so no component exceeds what U's fastest input carries, sqrt(2 E_max / m) or
+        sqrt(2 E_max / I) (length/s, rad/s)."""
+        s, w = self.scene.inputs.max_speed, self.scene.inputs.max_turn
+        energy2 = self.mass * 2.0 * s * s + self.inertia * w * w  # 2 E_max
+        return math.sqrt(energy2 / min(self.mass, self.inertia)) * (1.0 + 1e-9)
+
+    def control_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.scene.inputs.bounds()
+
+    def state_of_pose(self, pose: Sequence[float]) -> tuple[float, ...]:
+        """The part at rest in ``pose``."""
+        return (float(pose[0]), float(pose[1]), float(pose[2]), 0.0, 0.0, 0.0)
+
+    def clearance(self, state: Sequence[float]) -> float:
+        """Smallest signed distance to the obstacles (negative: penetration depth)."""
+        return self.arrays.clearance(state[0], state[1], state[2])
+
+    def is_valid(self, state: Sequence[float]) -> bool:
+        """Centre of mass in bounds, speeds within ``velocity_limit`` and psi_n(q) >= 0."""
+        b = self.arrays.bounds
+        if not (b[0] <= state[0] <= b[1] and b[2] <= state[1] <= b[3]):
+            return False
+        if max(abs(state[3]), abs(state[4]), abs(state[5])) > self.velocity_limit:
+            return False
+        return self.arrays.clearance(state[0], state[1], state[2], stop_below=0.0) >= 0.0
+
+    def run(
+        self, state: Sequence[float], control: Sequence[float], duration: float, record: bool
+    ) -> KinematicRun:
+        """Propagate and, with ``record``, keep every state and the per-step telemetry."""
+        n = max(1, math.ceil(duration / self.step - 1e-9))
+        h = duration / n  # at most the level's step, and n of them make exactly `duration`
+        a = self.arrays
+        out = np.empty(6)
+        traj = np.empty((n + 1 if record else 0, 6))
+        tele = np.empty((n if record else 0, len(TELEMETRY_COLUMNS)))
+        summary = np.zeros(len(SUMMARY_FIELDS))
+        steps, reason = kinematic_kernel(
+            np.asarray(state, dtype=np.float64)[:6].copy(),
+            np.asarray(control, dtype=np.float64)[:3].copy(),
+            n,
+            h,
+            self.mass,
+            self.inertia,
+            self.friction,
+            self.restitution,
+            self.contact_band,
+            self.max_impacts,
+            a.body,
+            a.verts,
+            a.counts,
+            a.aabbs,
+            a.circles,
+            a.surface,
+            a.corners,
+            a.bounds,
+            out,
+            traj,
+            tele,
+            summary,
+        )
+        if not record:
+            traj = out[None, :]
+        return KinematicRun(
+            states=traj[: steps + 1] if record else traj,
+            telemetry=tele[:steps],
+            summary={k: float(v) for k, v in zip(SUMMARY_FIELDS, summary, strict=True)},
+            end=END_REASONS[reason],
+            h=h,
+        )
+
+    def propagate(
+        self, state: Sequence[float], control: Sequence[float], duration: float
+    ) -> tuple[float, ...]:
+        """The state after commanding the velocity ``control`` for ``duration`` seconds (steps
+        of at most h; stops before a step that would take the centre of mass out of bounds)."""
+        return tuple(float(v) for v in self.run(state, control, duration, record=False).final)
+
+    def propagate_path(
+        self, state: Sequence[float], control: Sequence[float], duration: float
+    ) -> np.ndarray:
+        """Every state of :meth:`propagate` (rows, start first; the last row is its result)."""
+        return self.run(state, control, duration, record=True).states
