@@ -100,7 +100,7 @@ def point_polygon_feature(
         return inside, in_nx, in_ny, px - inside * in_nx, py - inside * in_ny, False, False
     if inside <= 0.0 and d_i >= 0:
         return depth, d_nx, d_ny, px - depth * d_nx, py - depth * d_ny, False, False
-    best, cx, cy, vertex, hidden, joint = np.inf, px, py, False, False, -1
+    best, cx, cy, vertex, hidden, joint, edge = np.inf, px, py, False, False, -1, 0
     for i in range(nb):
         j = (i + 1) % nb
         ax, ay = b[i, 0], b[i, 1]
@@ -112,7 +112,7 @@ def point_polygon_feature(
         qx, qy = ax + t * ex, ay + t * ey
         d = math.hypot(px - qx, py - qy)
         if d < best:
-            best, cx, cy, vertex = d, qx, qy, (t <= 0.0 or t >= 1.0)
+            best, cx, cy, vertex, edge = d, qx, qy, (t <= 0.0 or t >= 1.0), i
             k = i if t <= 0.0 else j
             joint = k if vertex and not corners[min(k, last_c)] else -1
             hidden = not vertex and not surface[min(i, last_s)]
@@ -123,6 +123,9 @@ def point_polygon_feature(
                 gap = nx * (px - b[joint, 0]) + ny * (py - b[joint, 1])
                 return gap, nx, ny, px - gap * nx, py - gap * ny, False, False
         hidden = True
+    if best > _TINY and not vertex:  # the edge's own normal: exact even for a tiny gap
+        nx, ny, _ = _edge_normal(b, edge, nb)
+        return best, nx, ny, cx, cy, vertex, hidden
     if best > _TINY:
         return best, (px - cx) / best, (py - cy) / best, cx, cy, vertex, hidden
     return best, in_nx, in_ny, cx, cy, vertex, hidden  # on the boundary: the edge's normal
