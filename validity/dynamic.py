@@ -190,7 +190,8 @@ class DynamicLevel:
         self, state: Sequence[float], control: Sequence[float], duration: float
     ) -> tuple[float, ...]:
         """The state after holding the wrench ``control`` for ``duration`` seconds (steps of h;
-        stops early only if the centre of mass leaves the bounds)."""
+        stops early, at the last state inside, before a step that would take the centre of mass
+        out of the bounds)."""
         out, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=False)
         out[2] = _wrap_outside(out[2:3])[0]
         return tuple(float(v) for v in out)

@@ -210,7 +210,7 @@ def simulate_kernel(
     ``wrench = (fx, fy, tau)`` is held constant. The run ends early when the centre of mass
     drops below ``y_stop``, when the speed of every point of the part (|v| + R|omega|) stays
     below ``rest_speed`` for ``rest_steps`` steps (0 disables), or when the centre of mass
-    leaves ``bounds``. Writes the final state to ``out_state``, every state to ``traj``
+    would leave ``bounds`` (that step is not taken). Writes the final state to ``out_state``, every state to ``traj``
     (rows 0..steps) and per-step telemetry to ``tele`` when they have rows, and totals to
     ``summary``. Returns ``(steps taken, end reason)``.
     """
@@ -249,6 +249,7 @@ def simulate_kernel(
     reason = RAN_FULL
     steps = 0
     for step in range(n_steps):
+        last = (x, y, th, vx, vy, om)
         vstar[0], vstar[1], vstar[2] = vx + h * ax, vy + h * ay, om + h * alpha
         status, pivots, reg, residual, depth, nc, size = NO_LCP, 0, 0.0, 0.0, 0.0, 0, 0
         if free_left > 0:
@@ -332,6 +333,8 @@ def simulate_kernel(
             reason = CROSSED
             break
         if not (bounds[0] <= x <= bounds[1] and bounds[2] <= y <= bounds[3]):
+            x, y, th, vx, vy, om = last  # the step out is not taken: end at the last state in
+            steps = step
             reason = LEFT_BOUNDS
             break
         if rest_steps > 0:

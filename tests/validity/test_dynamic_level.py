@@ -289,18 +289,6 @@ def test_random_states_in_the_feeder_stay_finite_and_never_gain_energy(
 # --- the Level contract ---------------------------------------------------------------------
 
 
-def test_propagate_is_deterministic_and_does_not_mutate_its_input() -> None:
-    scene = _table3()
-    level = DynamicLevel(scene)
-    state = [*level.state_of_pose(scene.start("heavy_leading"))]
-    before = list(state)
-    control = [1.0, -0.5, 0.2]
-    first = level.propagate(state, control, 0.3)
-    assert state == before and control == [1.0, -0.5, 0.2]
-    assert level.propagate(state, control, 0.3) == first
-    assert len(first) == 6 and -math.pi <= first[2] < math.pi
-
-
 def test_propagate_applies_the_wrench_as_a_force() -> None:
     """In free flight a force f adds f/m to the acceleration: v(T) = (g + f/m) T exactly."""
     scene = _floor_scene()

@@ -289,32 +289,6 @@ def test_no_tunnelling_while_turning_at_top_rate() -> None:
 # --------------------------------------------------------------------------- contract
 
 
-def test_propagate_does_not_mutate_its_input() -> None:
-    """State and control passed as lists and arrays are unchanged after propagate."""
-    scene = _table3()
-    level = GeometricLevel(scene)
-    start = scene.start("heavy_leading")
-    for state, control in [
-        (list(start), [0.5, -1.0, 0.3]),
-        (np.array(start), np.array([-1.0, -1.0, -1.0])),
-    ]:
-        state_before, control_before = np.array(state), np.array(control)
-        level.propagate(state, control, 1.0)
-        assert np.array_equal(np.asarray(state), state_before)
-        assert np.array_equal(np.asarray(control), control_before)
-
-
-def test_same_input_same_output() -> None:
-    """Repeated calls, on the same level and on a new one, give identical floats."""
-    scene = _table3()
-    first, second = GeometricLevel(scene), GeometricLevel(scene)
-    rng = np.random.default_rng(51)
-    cases = list(zip(_valid_poses(first, 40, 52), _random_controls(scene, 40, rng), strict=True))
-    results = [first.propagate(q, u, 1.5) for q, u in cases]
-    assert [first.propagate(q, u, 1.5) for q, u in cases] == results
-    assert [second.propagate(q, u, 1.5) for q, u in cases] == results
-
-
 def test_yaw_stays_in_half_open_range() -> None:
     """From yaws at and near +-pi, turning either way at up to the top rate, every result's
     yaw is in [-pi, pi)."""
