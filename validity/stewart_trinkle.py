@@ -210,9 +210,9 @@ def simulate_kernel(
     ``wrench = (fx, fy, tau)`` is held constant. The run ends early when the centre of mass
     drops below ``y_stop``, when the speed of every point of the part (|v| + R|omega|) stays
     below ``rest_speed`` for ``rest_steps`` steps (0 disables), or when the centre of mass
-    would leave ``bounds`` (that step is not taken). Writes the final state to ``out_state``, every state to ``traj``
-    (rows 0..steps) and per-step telemetry to ``tele`` when they have rows, and totals to
-    ``summary``. Returns ``(steps taken, end reason)``.
+    would leave ``bounds`` (that step is not taken). Writes the final state to
+    ``out_state``, every state to ``traj`` (rows 0..steps) and per-step telemetry to ``tele``
+    when they have rows, and totals to ``summary``. Returns ``(steps taken, end reason)``.
     """
     record = traj.shape[0] > 0
     telemetry = tele.shape[0] > 0

@@ -27,10 +27,10 @@ from validity.impact import (
     resolve_impacts,
 )
 
-M, I = 1.0, 77.0 / 300.0  # the default peg's mass and moment of inertia
+M, INERTIA = 1.0, 77.0 / 300.0  # the default peg's mass and moment of inertia
 
 
-def _energy(vel: np.ndarray, mass: float = M, inertia: float = I) -> float:
+def _energy(vel: np.ndarray, mass: float = M, inertia: float = INERTIA) -> float:
     return 0.5 * mass * (vel[0] ** 2 + vel[1] ** 2) + 0.5 * inertia * vel[2] ** 2
 
 
@@ -42,7 +42,7 @@ def test_frictionless_head_on_impact_reverses_the_normal_velocity_scaled_by_e(e:
     """Struck along the line through its centre of mass (r parallel to n): u_n+ = -e u_n-,
     the tangential velocity and the spin unchanged."""
     vel = np.array([0.4, -2.0, 0.0])
-    status = collide(vel, 0.0, -0.7, 0.0, 1.0, M, I, 0.0, e)  # floor below the centre
+    status = collide(vel, 0.0, -0.7, 0.0, 1.0, M, INERTIA, 0.0, e)  # floor below the centre
     assert status == IMPACT_DONE
     assert vel[1] == pytest.approx(2.0 * e, abs=1e-12)
     assert vel[0] == pytest.approx(0.4, abs=1e-12) and vel[2] == pytest.approx(0.0, abs=1e-12)
@@ -55,7 +55,7 @@ def test_frictionless_off_centre_impact_obeys_newtons_law_at_the_contact(e: floa
     vel = np.array([0.0, -1.5, 0.8])
     rx, ry = 0.7, -0.5
     before = contact_velocity(vel, rx, ry, 0.0, 1.0)
-    collide(vel, rx, ry, 0.0, 1.0, M, I, 0.0, e)
+    collide(vel, rx, ry, 0.0, 1.0, M, INERTIA, 0.0, e)
     assert contact_velocity(vel, rx, ry, 0.0, 1.0) == pytest.approx(-e * before, abs=1e-12)
 
 
@@ -137,7 +137,7 @@ IMPACTS = [  # (u_n, u_t, r_x, r_y, mu, e): a peg corner striking a floor (n = (
 def test_phases_match_a_fine_integration_of_routh_equations(un, ut, rx, ry, mu, e) -> None:
     """Exact phase-by-phase integration agrees with 10^5 small increments to 1e-4 (the
     reference's own first-order error at this increment)."""
-    knn, knt, ktt = contact_inverse_inertia(rx, ry, 0.0, 1.0, M, I)
+    knn, knt, ktt = contact_inverse_inertia(rx, ry, 0.0, 1.0, M, INERTIA)
     pn, pt, status = planar_impact(un, ut, knn, knt, ktt, mu, e)
     ref_n, ref_t = _routh_reference(un, ut, knn, knt, ktt, mu, e)
     assert status == IMPACT_DONE
@@ -149,7 +149,7 @@ def test_the_reference_cases_cover_slip_reversal() -> None:
     """Case 2 has |K_nt| > mu K_tt (stick impossible) and an impulse that drives u_t through
     0 (u_t K_nt < 0): the contact ends the impact slipping the other way."""
     un, ut, rx, ry, mu, e = IMPACTS[1]
-    knn, knt, ktt = contact_inverse_inertia(rx, ry, 0.0, 1.0, M, I)
+    knn, knt, ktt = contact_inverse_inertia(rx, ry, 0.0, 1.0, M, INERTIA)
     assert abs(knt) > mu * ktt and ut * knt < 0.0
     pn, pt, _ = planar_impact(un, ut, knn, knt, ktt, mu, e)
     assert (ut + knt * pn + ktt * pt) * ut < 0.0
@@ -209,7 +209,7 @@ def test_a_flat_landing_resolved_contact_by_contact_leaves_no_corner_approaching
     for mu, e in [(0.0, 0.0), (0.3, 0.0), (0.3, 0.5), (1.0, 1.0)]:
         vel = np.array([0.2, -1.0, 0.0])
         before = _energy(vel)
-        count = resolve_impacts(vel, 0.0, 0.0, contacts, 2, 1e-4, M, I, mu, e, 1e-12, 64)
+        count = resolve_impacts(vel, 0.0, 0.0, contacts, 2, 1e-4, M, INERTIA, mu, e, 1e-12, 64)
         assert count >= 1
         for bx, by in body:
             assert contact_velocity(vel, bx, by, 0.0, 1.0) >= -1e-12

@@ -31,10 +31,13 @@ BODY = DEFAULT_PEG.body_vertices()
 FLOOR = np.array([[-50.0, -1.0], [50.0, -1.0], [50.0, 0.0], [-50.0, 0.0]])
 
 
-def _scene(polygons, circles=np.zeros((0, 3)), **physics) -> Scene:
+def _scene(polygons, circles=None, **physics) -> Scene:
     return Scene(
         name="test",
-        obstacles=Obstacles(tuple(np.asarray(p, dtype=float) for p in polygons), circles),
+        obstacles=Obstacles(
+            tuple(np.asarray(p, dtype=float) for p in polygons),
+            np.zeros((0, 3)) if circles is None else circles,
+        ),
         part=DEFAULT_PEG,
         bounds=(-40.0, 40.0, -40.0, 40.0),
         starts={"start": (0.0, 5.0, 0.0)},
