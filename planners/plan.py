@@ -18,7 +18,7 @@ from ompl import util as ou
 from feeders.scene import Scene
 from planners.adapters import state_propagator, validity_checker
 from planners.goals import GoalBox
-from planners.projections import register_position_projection
+from planners.projections import register_pose_projection
 from planners.registry import make_planner
 from planners.spaces import make_control_space, make_state_space, state_codec
 from validity import make_level
@@ -155,7 +155,7 @@ def plan(
     si = ss.getSpaceInformation()
     si.setPropagationStepSize(settings.step)
     si.setMinMaxControlDuration(settings.min_steps, settings.max_steps)
-    register_position_projection(space, level.state_dim)
+    register_pose_projection(space, level.state_dim)
 
     read, write = state_codec(level.state_dim)
     start = space.allocState()

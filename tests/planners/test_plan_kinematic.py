@@ -1,0 +1,94 @@
+"""The kinematic level planned with OMPL's RRT and KPIECE1 on table3 (SE2 x R^3 states,
+velocity controls from the scene's U, the pose projection for KPIECE1).
+
+Each found path is re-validated independently of the planner: its controls are re-propagated
+from the start in OMPL's propagation steps and must reproduce the planner's states, every
+state of the fine path must be free of overlap by shapely's measure, and the last must lie in
+the goal.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from feeders.design import PRESETS
+from feeders.feeder import build_feeder
+from feeders.scene import Scene
+from planners.plan import PlannerSettings, PlanResult, plan
+from validity import make_level
+
+ORIENTATIONS = ("heavy_leading", "heavy_trailing")
+STEP = PlannerSettings().step  # OMPL's propagation step (s)
+AREA_TOL = 1e-12  # shapely overlap area still counted as touching (length^2)
+
+
+@functools.cache
+def _scene() -> Scene:
+    return build_feeder(PRESETS["table3"], name="table3")
+
+
+def _largest_overlap(scene: Scene, states: np.ndarray) -> float:
+    pieces = [shapely.Polygon(p) for p in scene.obstacles.polygons]
+    body = scene.part.body_vertices()
+    parts = []
+    for x, y, th in states[:, :3]:
+        c, s = math.cos(th), math.sin(th)
+        parts.append(shapely.Polygon(body @ np.array([[c, s], [-s, c]]) + (x, y)))
+    parts_arr = np.array(parts)
+    worst = max(float(np.max(shapely.area(shapely.intersection(parts_arr, p)))) for p in pieces)
+    for cx, cy, r in scene.obstacles.circles:
+        gap = float(np.min(shapely.distance(parts_arr, shapely.Point(cx, cy)))) - r
+        worst = max(worst, math.inf if gap < -1e-9 else 0.0)
+    return worst
+
+
+def _revalidate(scene: Scene, result: PlanResult) -> None:
+    level = make_level("kinematic", scene)
+    state = level.state_of_pose(scene.start(result.orientation))
+    for control, duration in zip(result.controls, result.durations, strict=True):
+        for _ in range(round(duration / STEP)):
+            state = level.propagate(state, control, STEP)
+    np.testing.assert_array_equal(state, result.path[-1])
+    np.testing.assert_array_equal(result.fine_path[-1], result.path[-1])
+    assert scene.goal.contains(tuple(state[:3]))
+    assert all(level.is_valid(s) for s in result.fine_path)
+    assert _largest_overlap(scene, result.fine_path) <= AREA_TOL
+
+
+@pytest.mark.parametrize("orientation", ORIENTATIONS)
+def test_rrt_solves_table3_in_at_least_19_of_20_seeded_runs(orientation: str) -> None:
+    """Budget 5 s per run (RRT typically needs 0.1-0.7 s here); every path is re-validated."""
+    scene = _scene()
+    solved = 0
+    for seed in range(1, 21):
+        result = plan(scene, "kinematic", "rrt", orientation, 5.0, seed)
+        if result.solved:
+            solved += 1
+            _revalidate(scene, result)
+    assert solved >= 19, f"rrt {orientation}: {solved}/20"
+
+
+@pytest.mark.parametrize("orientation", ORIENTATIONS)
+def test_kpiece1_solves_table3_with_the_pose_projection(orientation: str) -> None:
+    """KPIECE1 projects the pose (x, y, yaw); 5 seeded runs of 10 s, at least 4 solved."""
+    scene = _scene()
+    solved = 0
+    for seed in range(1, 6):
+        result = plan(scene, "kinematic", "kpiece", orientation, 10.0, seed)
+        if result.solved:
+            solved += 1
+            _revalidate(scene, result)
+    assert solved >= 4, f"kpiece {orientation}: {solved}/5"
+
+
+def test_same_seed_same_tree_and_path() -> None:
+    a = plan(_scene(), "kinematic", "rrt", "heavy_trailing", 5.0, 7)
+    b = plan(_scene(), "kinematic", "rrt", "heavy_trailing", 5.0, 7)
+    assert a.tree_size == b.tree_size and a.path.shape[1] == 6
+    np.testing.assert_array_equal(a.path, b.path)
+    np.testing.assert_array_equal(a.fine_path, b.fine_path)
