@@ -215,15 +215,22 @@ def bench_propagation(work: Workload, repeats: int, cases: str) -> dict:
     return result
 
 
-def bench_planning(scene: Scene, seeds: int, time_limit: float = 10.0) -> dict:
-    """(e) RRT on the geometric level: time to the first solution (s; an unsolved run counts
-    as the time limit), solved fraction and tree size, per start orientation."""
+def bench_planning(
+    scene: Scene,
+    seeds: int,
+    time_limit: float = 10.0,
+    level: str = "geometric",
+    planner: str = "rrt",
+) -> dict:
+    """(e) A planner on a level (default: RRT, geometric): time to the first solution (s; an
+    unsolved run counts as the time limit), solved fraction and tree size, per start
+    orientation."""
     from planners.plan import plan  # imported here: OMPL is only needed for this measurement
 
     out = {}
     for orientation in scene.starts:
         runs = [
-            plan(scene, "geometric", "rrt", orientation, time_limit=time_limit, seed=s)
+            plan(scene, level, planner, orientation, time_limit=time_limit, seed=s)
             for s in range(1, seeds + 1)
         ]
         times = [r.time if r.solved else time_limit for r in runs]
