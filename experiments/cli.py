@@ -100,7 +100,7 @@ def _parser() -> argparse.ArgumentParser:
     bench.add_argument(
         "--level",
         default="geometric",
-        choices=("geometric", "dynamic"),
+        choices=("geometric", "kinematic", "dynamic"),
         help="which level's benchmarks (dynamic: against MuJoCo when installed)",
     )
     bench.add_argument("--quick", action="store_true", help="fewer repeats and seeds")
@@ -310,6 +310,12 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
     if args.repeats < 1:
         raise UsageError(f"--repeats = {args.repeats} must be >= 1")
+    if args.level == "kinematic":
+        from experiments.bench_kinematic import format_kinematic_report, run_kinematic_benchmarks
+
+        results = run_kinematic_benchmarks(repeats=args.repeats, seed=args.seed, quick=args.quick)
+        print(json.dumps(results, indent=2) if args.json else format_kinematic_report(results))
+        return 0
     if args.level == "dynamic":
         from experiments.bench_dynamic import format_dynamic_report, run_dynamic_benchmarks
 
