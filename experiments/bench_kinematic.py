@@ -49,13 +49,14 @@ def _workload(level: KinematicLevel, seed: int, n: int) -> tuple[list, list]:
     """Seeded (state, control) cases on the level's scene, split into propagations with no
     impact and with at least one."""
     rng = np.random.default_rng(seed)
-    free, hit = [], []
+    free: list[tuple[tuple[float, ...], np.ndarray]] = []
+    hit: list[tuple[tuple[float, ...], np.ndarray]] = []
     for pose in cross_check_poses(level.scene, 40 * n, seed):
         state = level.state_of_pose(pose)
         if not level.is_valid(state):
             continue
         u = rng.uniform(*level.control_bounds())
-        run = level.run(state, u, DURATION, record=False)
+        run = level.run(state, tuple(u), DURATION, record=False)
         if run.end != "duration":
             continue
         (hit if run.summary["impacts"] > 0 else free).append((state, u))
