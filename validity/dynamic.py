@@ -129,13 +129,9 @@ class DynamicLevel:
     def is_valid(self, state: Sequence[float]) -> bool:
         """Centre of mass in bounds, speeds within ``velocity_limit`` and penetration within
         ``penetration_tolerance`` (time stepping resolves contact to a small overlap)."""
-        b = self.arrays.bounds
-        if not (b[0] <= state[0] <= b[1] and b[2] <= state[1] <= b[3]):
-            return False
-        if max(abs(state[3]), abs(state[4]), abs(state[5])) > self.velocity_limit:
-            return False
-        tol = -self.penetration_tolerance
-        return self.arrays.clearance(state[0], state[1], state[2], stop_below=tol) >= tol
+        return self.arrays.moving_state_is_valid(
+            state, self.velocity_limit, self.penetration_tolerance
+        )
 
     def _run(
         self,

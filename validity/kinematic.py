@@ -106,12 +106,7 @@ class KinematicLevel:
 
     def is_valid(self, state: Sequence[float]) -> bool:
         """Centre of mass in bounds, speeds within ``velocity_limit`` and psi_n(q) >= 0."""
-        b = self.arrays.bounds
-        if not (b[0] <= state[0] <= b[1] and b[2] <= state[1] <= b[3]):
-            return False
-        if max(abs(state[3]), abs(state[4]), abs(state[5])) > self.velocity_limit:
-            return False
-        return self.arrays.clearance(state[0], state[1], state[2], stop_below=0.0) >= 0.0
+        return self.arrays.moving_state_is_valid(state, self.velocity_limit, 0.0)
 
     def run(
         self, state: Sequence[float], control: Sequence[float], duration: float, record: bool

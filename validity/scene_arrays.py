@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,3 +57,17 @@ class SceneArrays:
                 self.body, x, y, yaw, self.verts, self.counts, self.aabbs, self.circles, stop_below
             )
         )
+
+    def moving_state_is_valid(
+        self, state: Sequence[float], velocity_limit: float, penetration_tolerance: float
+    ) -> bool:
+        """A pose-and-velocity state ``(x, y, yaw, vx, vy, omega)`` is valid when the centre of
+        mass is within the bounds, no speed exceeds ``velocity_limit`` and the part overlaps
+        no obstacle deeper than ``penetration_tolerance`` (length; 0: psi_n >= 0 exactly)."""
+        b = self.bounds
+        if not (b[0] <= state[0] <= b[1] and b[2] <= state[1] <= b[3]):
+            return False
+        if max(abs(state[3]), abs(state[4]), abs(state[5])) > velocity_limit:
+            return False
+        floor = -penetration_tolerance
+        return self.clearance(state[0], state[1], state[2], stop_below=floor) >= floor
