@@ -20,7 +20,7 @@ class PoseProjection(ob.ProjectionEvaluator):
     def __init__(self, space: ob.StateSpace):
         super().__init__(space)
 
-    def getDimension(self) -> int:  # noqa: N802 (OMPL's name)
+    def getDimension(self) -> int:
         return 3
 
     def project(self, state, out) -> None:
