@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from feeders.scene import Scene
-from validity.scene_arrays import SceneArrays
+from validity.moving_part import MovingPartLevel
 from validity.stewart_trinkle import (
     END_REASONS,
     SUMMARY_FIELDS,
@@ -74,12 +74,10 @@ class Trajectory:
         return float(max(0.0, np.max(e - e[0])))
 
 
-class DynamicLevel:
+class DynamicLevel(MovingPartLevel):
     """Eq. 7 on a scene: validity, clearance, propagation and simulation of (pose, velocity)."""
 
     name = "dynamic"
-    state_dim = 6
-    control_dim = 3
     velocity_limit = VELOCITY_LIMIT
 
     def __init__(
@@ -102,36 +100,17 @@ class DynamicLevel:
                 raise ValueError(
                     f"dynamic {label} = {value!r} is outside the allowed range [{low}, {high}]"
                 )
-        self.scene = scene
+        super().__init__(scene)
         self.step = float(step)
         self.margin = float(margin)
         self.push_cap = float(push_cap)
         self.skip_free = bool(skip_free)
         self.warm_start = bool(warm_start)
         self.penetration_tolerance = float(penetration_tolerance)
-        self.arrays = SceneArrays.from_scene(scene)
-        part = scene.part
-        self.mass, self.inertia = part.mass, part.inertia
         self.gravity = np.asarray(scene.gravity, dtype=np.float64)
-        self.friction = float(scene.friction)
 
     def control_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.scene.inputs.wrench_bounds()
-
-    def state_of_pose(self, pose: Sequence[float]) -> tuple[float, ...]:
-        """The part at rest in ``pose``."""
-        return (float(pose[0]), float(pose[1]), float(pose[2]), 0.0, 0.0, 0.0)
-
-    def clearance(self, state: Sequence[float]) -> float:
-        """Smallest signed distance to the obstacles (negative: penetration depth)."""
-        return self.arrays.clearance(state[0], state[1], state[2])
-
-    def is_valid(self, state: Sequence[float]) -> bool:
-        """Centre of mass in bounds, speeds within ``velocity_limit`` and penetration within
-        ``penetration_tolerance`` (time stepping resolves contact to a small overlap)."""
-        return self.arrays.moving_state_is_valid(
-            state, self.velocity_limit, self.penetration_tolerance
-        )
 
     def _run(
         self,
@@ -143,8 +122,7 @@ class DynamicLevel:
         rest_time: float,
         record: bool,
     ):
-        n = max(1, math.ceil(duration / self.step - 1e-9))
-        h = duration / n  # at most the level's step, and n of them make exactly `duration`
+        n, h = self.steps_of(duration)
         a = self.arrays
         out = np.empty(6)
         traj = np.empty((n + 1 if record else 0, 6))

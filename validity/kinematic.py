@@ -26,7 +26,7 @@ from validity.impulse_stepper import (
     TELEMETRY_COLUMNS,
     kinematic_kernel,
 )
-from validity.scene_arrays import SceneArrays
+from validity.moving_part import MovingPartLevel
 
 DEFAULT_STEP = 0.01  # h (s), as the geometric level: the impacts make the result exact in h
 CONTACT_BAND = 1e-4  # gap (length) at which the part touches; advances stop at half of it
@@ -49,12 +49,11 @@ class KinematicRun:
         return self.states[-1]
 
 
-class KinematicLevel:
+class KinematicLevel(MovingPartLevel):
     """Eq. 8 with Algorithm 2's impacts on a scene: validity, clearance and propagation."""
 
     name = "kinematic"
-    state_dim = 6
-    control_dim = 3
+    penetration_tolerance = 0.0  # psi_n(q) >= 0 exactly
 
     def __init__(
         self,
@@ -75,45 +74,26 @@ class KinematicLevel:
             raise ValueError(
                 f"kinematic max_impacts = {max_impacts!r} is outside the allowed range [1, 10000]"
             )
-        self.scene = scene
+        super().__init__(scene)
         self.step = float(step)
         self.contact_band = float(contact_band)
         self.max_impacts = int(max_impacts)
-        self.arrays = SceneArrays.from_scene(scene)
-        self.mass, self.inertia = scene.part.mass, scene.part.inertia
-        self.friction = float(scene.friction)
         self.restitution = float(scene.restitution)
-
-    @property
-    def velocity_limit(self) -> float:
-        """Largest |vx|, |vy| or |omega| a propagated state can have: impacts never add kinetic
-        energy, so no component exceeds what U's fastest input carries, sqrt(2 E_max / m) or
-        sqrt(2 E_max / I) (length/s, rad/s)."""
-        s, w = self.scene.inputs.max_speed, self.scene.inputs.max_turn
+        # Largest |vx|, |vy| or |omega| a propagated state can have: impacts never add kinetic
+        # energy, so no component exceeds what U's fastest input carries, sqrt(2 E_max / m) or
+        # sqrt(2 E_max / I) (length/s, rad/s).
+        s, w = scene.inputs.max_speed, scene.inputs.max_turn
         energy2 = self.mass * 2.0 * s * s + self.inertia * w * w  # 2 E_max
-        return math.sqrt(energy2 / min(self.mass, self.inertia)) * (1.0 + 1e-9)
+        self.velocity_limit = math.sqrt(energy2 / min(self.mass, self.inertia)) * (1.0 + 1e-9)
 
     def control_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.scene.inputs.bounds()
-
-    def state_of_pose(self, pose: Sequence[float]) -> tuple[float, ...]:
-        """The part at rest in ``pose``."""
-        return (float(pose[0]), float(pose[1]), float(pose[2]), 0.0, 0.0, 0.0)
-
-    def clearance(self, state: Sequence[float]) -> float:
-        """Smallest signed distance to the obstacles (negative: penetration depth)."""
-        return self.arrays.clearance(state[0], state[1], state[2])
-
-    def is_valid(self, state: Sequence[float]) -> bool:
-        """Centre of mass in bounds, speeds within ``velocity_limit`` and psi_n(q) >= 0."""
-        return self.arrays.moving_state_is_valid(state, self.velocity_limit, 0.0)
 
     def run(
         self, state: Sequence[float], control: Sequence[float], duration: float, record: bool
     ) -> KinematicRun:
         """Propagate and, with ``record``, keep every state and the per-step telemetry."""
-        n = max(1, math.ceil(duration / self.step - 1e-9))
-        h = duration / n  # at most the level's step, and n of them make exactly `duration`
+        n, h = self.steps_of(duration)
         a = self.arrays
         out = np.empty(6)
         traj = np.empty((n + 1 if record else 0, 6))
