@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from feeders.scene import Scene
-from validity.moving_part import MovingPartLevel
+from validity.moving_part import MovingPartLevel, run_buffers
 from validity.stewart_trinkle import (
     END_REASONS,
     SUMMARY_FIELDS,
@@ -123,11 +123,9 @@ class DynamicLevel(MovingPartLevel):
         record: bool,
     ):
         n, h = self.steps_of(duration)
-        a = self.arrays
-        out = np.empty(6)
-        traj = np.empty((n + 1 if record else 0, 6))
-        tele = np.empty((n if record else 0, len(TELEMETRY_COLUMNS)))
-        summary = np.zeros(len(SUMMARY_FIELDS))
+        out, traj, tele, summary = run_buffers(
+            n, record, len(TELEMETRY_COLUMNS), len(SUMMARY_FIELDS)
+        )
         rest_steps = math.ceil(rest_time / h) if rest_speed > 0.0 else 0
         steps, reason = simulate_kernel(
             np.asarray(state, dtype=np.float64)[:6].copy(),
@@ -145,14 +143,7 @@ class DynamicLevel(MovingPartLevel):
             y_stop,
             rest_speed,
             rest_steps,
-            a.body,
-            a.verts,
-            a.counts,
-            a.aabbs,
-            a.circles,
-            a.surface,
-            a.corners,
-            a.bounds,
+            *self.arrays.contact_scene,
             out,
             traj,
             tele,

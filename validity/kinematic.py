@@ -26,7 +26,7 @@ from validity.impulse_stepper import (
     TELEMETRY_COLUMNS,
     kinematic_kernel,
 )
-from validity.moving_part import MovingPartLevel
+from validity.moving_part import MovingPartLevel, run_buffers
 
 DEFAULT_STEP = 0.01  # h (s), as the geometric level: the impacts make the result exact in h
 CONTACT_BAND = 1e-4  # gap (length) at which the part touches; advances stop at half of it
@@ -94,11 +94,9 @@ class KinematicLevel(MovingPartLevel):
     ) -> KinematicRun:
         """Propagate and, with ``record``, keep every state and the per-step telemetry."""
         n, h = self.steps_of(duration)
-        a = self.arrays
-        out = np.empty(6)
-        traj = np.empty((n + 1 if record else 0, 6))
-        tele = np.empty((n if record else 0, len(TELEMETRY_COLUMNS)))
-        summary = np.zeros(len(SUMMARY_FIELDS))
+        out, traj, tele, summary = run_buffers(
+            n, record, len(TELEMETRY_COLUMNS), len(SUMMARY_FIELDS)
+        )
         steps, reason = kinematic_kernel(
             np.asarray(state, dtype=np.float64)[:6].copy(),
             np.asarray(control, dtype=np.float64)[:3].copy(),
@@ -110,23 +108,14 @@ class KinematicLevel(MovingPartLevel):
             self.restitution,
             self.contact_band,
             self.max_impacts,
-            a.body,
-            a.verts,
-            a.counts,
-            a.aabbs,
-            a.circles,
-            a.surface,
-            a.corners,
-            a.bounds,
+            *self.arrays.contact_scene,
             out,
             traj,
             tele,
             summary,
         )
-        if not record:
-            traj = out[None, :]
         return KinematicRun(
-            states=traj[: steps + 1] if record else traj,
+            states=traj[: steps + 1] if record else out[None, :],
             telemetry=tele[:steps],
             summary={k: float(v) for k, v in zip(SUMMARY_FIELDS, summary, strict=True)},
             end=END_REASONS[reason],

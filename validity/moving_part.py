@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+import numpy as np
+
 from feeders.scene import Scene
 from validity.scene_arrays import SceneArrays
 
@@ -49,3 +51,18 @@ class MovingPartLevel:
         arithmetic)."""
         n = max(1, math.ceil(duration / self.step - 1e-9))
         return n, duration / n
+
+
+def run_buffers(
+    n_steps: int, record: bool, telemetry_columns: int, summary_fields: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(out (6,), traj, tele, summary)`` for a compiled run of ``n_steps``: ``traj (n + 1, 6)``
+    and ``tele (n, telemetry_columns)`` only when ``record`` (empty otherwise, which tells the
+    kernel not to record), ``summary`` zeroed."""
+    rows = n_steps if record else 0
+    return (
+        np.empty(6),
+        np.empty((rows + 1 if record else 0, 6)),
+        np.empty((rows, telemetry_columns)),
+        np.zeros(summary_fields),
+    )

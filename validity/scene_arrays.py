@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -46,6 +47,32 @@ class SceneArrays:
             corners=corner_vertices(
                 np.ascontiguousarray(verts), np.asarray(counts, dtype=np.int64)
             ),
+        )
+
+    @cached_property
+    def contact_scene(
+        self,
+    ) -> tuple[
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+    ]:
+        """``(body, verts, counts, aabbs, circles, surface, corners, bounds)``: the scene as
+        the contact levels' time-stepping kernels take it, in that order."""
+        return (
+            self.body,
+            self.verts,
+            self.counts,
+            self.aabbs,
+            self.circles,
+            self.surface,
+            self.corners,
+            self.bounds,
         )
 
     def clearance(self, x: float, y: float, yaw: float, stop_below: float = -np.inf) -> float:
