@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from feeders.scene import Scene
-from validity.moving_part import MovingPartLevel, run_buffers
+from validity.moving_part import MovingPartLevel, check_ranges, run_buffers
 from validity.stewart_trinkle import (
     END_REASONS,
     SUMMARY_FIELDS,
@@ -90,16 +90,15 @@ class DynamicLevel(MovingPartLevel):
         warm_start: bool = True,
         penetration_tolerance: float = PENETRATION_TOLERANCE,
     ):
-        for label, value, low, high in (
-            ("step h", step, 1e-6, 0.1),
-            ("contact margin", margin, 0.0, 1.0),
-            ("push-out cap", push_cap, 1e-6, 1e3),
-            ("penetration tolerance", penetration_tolerance, 0.0, 1.0),
-        ):
-            if not (math.isfinite(value) and low <= value <= high):
-                raise ValueError(
-                    f"dynamic {label} = {value!r} is outside the allowed range [{low}, {high}]"
-                )
+        check_ranges(
+            "dynamic",
+            (
+                ("step h", step, 1e-6, 0.1),
+                ("contact margin", margin, 0.0, 1.0),
+                ("push-out cap", push_cap, 1e-6, 1e3),
+                ("penetration tolerance", penetration_tolerance, 0.0, 1.0),
+            ),
+        )
         super().__init__(scene)
         self.step = float(step)
         self.margin = float(margin)

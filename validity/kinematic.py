@@ -26,7 +26,7 @@ from validity.impulse_stepper import (
     TELEMETRY_COLUMNS,
     kinematic_kernel,
 )
-from validity.moving_part import MovingPartLevel, run_buffers
+from validity.moving_part import MovingPartLevel, check_ranges, run_buffers
 
 DEFAULT_STEP = 0.01  # h (s), as the geometric level: the impacts make the result exact in h
 CONTACT_BAND = 1e-4  # gap (length) at which the part touches; advances stop at half of it
@@ -62,18 +62,13 @@ class KinematicLevel(MovingPartLevel):
         contact_band: float = CONTACT_BAND,
         max_impacts: int = MAX_IMPACTS,
     ):
-        for label, value, low, high in (
-            ("step h", step, 1e-6, 1.0),
-            ("contact band", contact_band, 1e-9, 0.01),
-        ):
-            if not (math.isfinite(value) and low <= value <= high):
-                raise ValueError(
-                    f"kinematic {label} = {value!r} is outside the allowed range [{low}, {high}]"
-                )
-        if not (isinstance(max_impacts, int) and 1 <= max_impacts <= 10_000):
-            raise ValueError(
-                f"kinematic max_impacts = {max_impacts!r} is outside the allowed range [1, 10000]"
-            )
+        check_ranges(
+            "kinematic",
+            (("step h", step, 1e-6, 1.0), ("contact band", contact_band, 1e-9, 0.01)),
+        )
+        if not isinstance(max_impacts, int):
+            raise ValueError(f"kinematic max_impacts = {max_impacts!r} must be an integer")
+        check_ranges("kinematic", (("max_impacts", max_impacts, 1, 10_000),))
         super().__init__(scene)
         self.step = float(step)
         self.contact_band = float(contact_band)

@@ -15,6 +15,16 @@ from feeders.scene import Scene
 from validity.scene_arrays import SceneArrays
 
 
+def check_ranges(level: str, options: Sequence[tuple[str, float, float, float]]) -> None:
+    """Raise a ValueError naming the level, the option and its allowed range for the first
+    ``(label, value, low, high)`` whose value is not a finite number in [low, high]."""
+    for label, value, low, high in options:
+        if not (math.isfinite(value) and low <= value <= high):
+            raise ValueError(
+                f"{level} {label} = {value!r} is outside the allowed range [{low}, {high}]"
+            )
+
+
 class MovingPartLevel:
     """Base of the levels whose state carries a velocity (Eqs. 7 and 8)."""
 
