@@ -158,7 +158,7 @@ class DynamicLevel(MovingPartLevel):
         out of the bounds)."""
         out, *_ = self._run(state, control, duration, -np.inf, 0.0, 0.0, record=False)
         out[2] = _wrap_outside(out[2:3])[0]
-        return tuple(float(v) for v in out)
+        return tuple(out.tolist())
 
     def propagate_path(
         self, state: Sequence[float], control: Sequence[float], duration: float

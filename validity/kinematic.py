@@ -84,17 +84,17 @@ class KinematicLevel(MovingPartLevel):
     def control_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.scene.inputs.bounds()
 
-    def run(
+    def _compiled_run(
         self, state: Sequence[float], control: Sequence[float], duration: float, record: bool
-    ) -> KinematicRun:
-        """Propagate and, with ``record``, keep every state and the per-step telemetry."""
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int, int, float]:
+        """The kernel's run: ``(out, traj, tele, summary, steps, reason, h)``."""
         n, h = self.steps_of(duration)
         out, traj, tele, summary = run_buffers(
             n, record, len(TELEMETRY_COLUMNS), len(SUMMARY_FIELDS)
         )
         steps, reason = kinematic_kernel(
-            np.asarray(state, dtype=np.float64)[:6].copy(),
-            np.asarray(control, dtype=np.float64)[:3].copy(),
+            np.array(state[:6], dtype=np.float64),
+            np.array(control[:3], dtype=np.float64),
             n,
             h,
             self.mass,
@@ -109,6 +109,15 @@ class KinematicLevel(MovingPartLevel):
             tele,
             summary,
         )
+        return out, traj, tele, summary, steps, reason, h
+
+    def run(
+        self, state: Sequence[float], control: Sequence[float], duration: float, record: bool
+    ) -> KinematicRun:
+        """Propagate and, with ``record``, keep every state and the per-step telemetry."""
+        out, traj, tele, summary, steps, reason, h = self._compiled_run(
+            state, control, duration, record
+        )
         return KinematicRun(
             states=traj[: steps + 1] if record else out[None, :],
             telemetry=tele[:steps],
@@ -122,10 +131,12 @@ class KinematicLevel(MovingPartLevel):
     ) -> tuple[float, ...]:
         """The state after commanding the velocity ``control`` for ``duration`` seconds (steps
         of at most h; stops before a step that would take the centre of mass out of bounds)."""
-        return tuple(float(v) for v in self.run(state, control, duration, record=False).final)
+        out, *_ = self._compiled_run(state, control, duration, record=False)
+        return tuple(out.tolist())  # no telemetry to pack: OMPL calls this for every step
 
     def propagate_path(
         self, state: Sequence[float], control: Sequence[float], duration: float
     ) -> np.ndarray:
         """Every state of :meth:`propagate` (rows, start first; the last row is its result)."""
-        return self.run(state, control, duration, record=True).states
+        _, traj, _, _, steps, _, _ = self._compiled_run(state, control, duration, record=True)
+        return traj[: steps + 1]
