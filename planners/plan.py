@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from ompl import base as ob
@@ -123,6 +125,64 @@ def fine_path(
     return np.array(states)
 
 
+@dataclass
+class ControlProblem:
+    """One level's planning problem as OMPL objects: the setup, its space information, the
+    level, the goal region and the reader of OMPL states into tuples."""
+
+    ss: oc.SimpleSetup
+    si: oc.SpaceInformation
+    level: Any
+    goal: GoalBox
+    read: Callable
+    counts: list[int] | None = None  # [validity checks, propagations] when counted
+
+
+def seed_ompl(seed: int) -> None:
+    """Seed OMPL's process-wide generator (OMPL 2 restarts it on every seeding)."""
+    previous = ou.getLogLevel()
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)  # "seed changed after start" is expected here
+    ou.RNG.setSeed(int(seed))
+    ou.setLogLevel(previous)
+
+
+def control_problem(
+    scene: Scene,
+    level_name: str,
+    orientation: str,
+    seed: int,
+    settings: PlannerSettings | None = None,
+    level_options: dict | None = None,
+    count: bool = False,
+) -> ControlProblem:
+    """From the scene's start ``orientation`` into its goal region at level ``level_name``:
+    state and control spaces, the level as validity checker and propagator, the propagation
+    step and control durations of ``settings``, the pose projection and the goal (its sampler
+    seeded by ``seed``, as is OMPL's generator). No planner is set. With ``count``, the
+    problem's ``counts`` holds [validity checks, propagations] made so far."""
+    settings = settings or PlannerSettings()
+    start_pose = scene.start(orientation)
+    level = make_level(level_name, scene, **(level_options or {}))
+    seed_ompl(seed)
+    space = make_state_space(scene, level.state_dim, getattr(level, "velocity_limit", None))
+    low, high = level.control_bounds()
+    ss = oc.SimpleSetup(make_control_space(space, low, high))
+    counts = [0, 0] if count else None
+    ss.setStateValidityChecker(validity_checker(level, counts))
+    ss.setStatePropagator(state_propagator(level, counts))
+    si = ss.getSpaceInformation()
+    si.setPropagationStepSize(settings.step)
+    si.setMinMaxControlDuration(settings.min_steps, settings.max_steps)
+    register_pose_projection(space, level.state_dim)
+    read, write = state_codec(level.state_dim)
+    start = space.allocState()
+    write(start, level.state_of_pose(start_pose))
+    ss.setStartState(start)
+    goal = GoalBox(si, scene.goal, level.state_dim, np.random.default_rng(seed))
+    ss.setGoal(goal)
+    return ControlProblem(ss=ss, si=si, level=level, goal=goal, read=read, counts=counts)
+
+
 def plan(
     scene: Scene,
     level_name: str = "geometric",
@@ -139,32 +199,11 @@ def plan(
     goal sampler, so the same seed gives the same tree and path.
     """
     settings = settings or PlannerSettings()
-    start_pose = scene.start(orientation)
-    level = make_level(level_name, scene, **(level_options or {}))
-    previous = ou.getLogLevel()
-    ou.setLogLevel(ou.LogLevel.LOG_NONE)  # "seed changed after start" is expected here
-    ou.RNG.setSeed(int(seed))
-    ou.setLogLevel(previous)
-
-    space = make_state_space(scene, level.state_dim, getattr(level, "velocity_limit", None))
-    low, high = level.control_bounds()
-    cspace = make_control_space(space, low, high)
-    ss = oc.SimpleSetup(cspace)
-    ss.setStateValidityChecker(validity_checker(level))
-    ss.setStatePropagator(state_propagator(level))
-    si = ss.getSpaceInformation()
-    si.setPropagationStepSize(settings.step)
-    si.setMinMaxControlDuration(settings.min_steps, settings.max_steps)
-    register_pose_projection(space, level.state_dim)
-
-    read, write = state_codec(level.state_dim)
-    start = space.allocState()
-    write(start, level.state_of_pose(start_pose))
-    ss.setStartState(start)
-    goal = GoalBox(si, scene.goal, level.state_dim, np.random.default_rng(seed))
-    ss.setGoal(goal)
+    problem = control_problem(scene, level_name, orientation, seed, settings, level_options)
+    ss, si, level, goal, read = problem.ss, problem.si, problem.level, problem.goal, problem.read
     ss.setPlanner(make_planner(planner_name, si))
     ss.setup()
+    start_pose = scene.start(orientation)
 
     # Compile (or load from cache) the level's kernels now, so `time` measures planning only.
     level.is_valid(level.state_of_pose(start_pose))

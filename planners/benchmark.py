@@ -1,0 +1,263 @@
+"""One level's planning problem through OMPL's Benchmark: the standard log and our own metrics.
+
+OMPL's ``Benchmark`` runs each planner ``runs`` times on one setup and writes the log that
+``ompl_benchmark_statistics`` turns into the database Planner Arena reads. Three things it does
+not do are added here, without changing what it measures:
+
+- a machine-independent budget: a count of propagations. ``Benchmark`` only takes a time
+  limit, so the planner is wrapped in one whose ``solve`` ORs OMPL's timed termination
+  condition with "propagations >= budget" (the time limit stays as a cap);
+- metrics of our own: whether the goal was reached exactly, propagations, validity checks,
+  the duration of the solution's controls (the time the part takes to leave, Eq. 10). OMPL
+  drops properties added in a post-run event, so they are collected in the pre/post-run
+  events and appended to the log as run properties (Planner Arena shows them as columns);
+- the wrapped planner's tree: OMPL cannot call a Python override of ``getPlannerData``, so the
+  wrapper's "graph states" and "graph motions" are replaced by its inner planner's.
+
+Every run is seeded (OMPL's generator and the goal sampler) with ``seed + run``, so planner A's
+run r and planner B's run r start from the same seed, and the same arguments give the same
+log when the budget is a count of propagations.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tempfile
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from ompl import base as ob
+from ompl import tools as ot
+
+from feeders.scene import Scene
+from planners.plan import PlannerSettings, control_problem, seed_ompl
+from planners.registry import PLANNERS, make_planner
+
+MEMORY_LIMIT_MB = 4096.0  # OMPL's per-run memory limit; far above what a control tree needs
+
+# The run properties appended to OMPL's log, with their OMPL types.
+EXTRA_PROPERTIES = {
+    "exact solution": "BOOLEAN",
+    "propagations": "INTEGER",
+    "validity checks": "INTEGER",
+    "exit time": "REAL",
+}
+
+
+@dataclass(frozen=True)
+class Budget:
+    """How long one planner run may search.
+
+    ``time_s``: OMPL wall-clock seconds (``Request.maxTime``). ``propagations``: if set, a run
+    also ends after this many calls of the propagator, which does not depend on the machine
+    or its load (a run's result is then reproducible anywhere); ``time_s`` stays as a cap.
+    """
+
+    time_s: float
+    propagations: int | None = None
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.time_s) and 0.0 < self.time_s <= 86400.0):
+            raise ValueError(f"budget time = {self.time_s!r} s is outside the range (0, 86400]")
+        if self.propagations is not None and not (1 <= self.propagations <= 10**9):
+            raise ValueError(
+                f"budget propagations = {self.propagations!r} is outside the range [1, 1e9]"
+            )
+
+
+@dataclass(frozen=True)
+class BenchmarkResult:
+    """OMPL's log (augmented, see the module docstring) and one plain dict per run, in the
+    log's order (planner by planner, run by run): ``planner``, ``run``, ``seed``, ``solved``
+    (goal reached exactly), ``approximate``, ``time_s``, ``tree_size``, ``tree_edges``,
+    ``propagations``, ``validity_checks``, ``exit_time_s`` (NaN when not solved)."""
+
+    log: str = field(repr=False)
+    runs: list[dict]
+
+
+class _PropagationBudget(ob.Planner):
+    """``inner`` stopped after ``budget`` propagations (or by OMPL's own condition)."""
+
+    def __init__(self, si, inner, counts: list[int], budget: int):
+        super().__init__(si, inner.getName())
+        self.inner = inner
+        self.counts = counts
+        self.budget = budget
+
+    def clear(self) -> None:
+        super().clear()
+        self.inner.clear()
+
+    def solve(self, ptc):
+        self.inner.setProblemDefinition(self.getProblemDefinition())
+        self.inner.setup()
+        stop_at = self.counts[1] + self.budget
+        spent = ob.PlannerTerminationCondition(lambda: self.counts[1] >= stop_at)
+        return self.inner.solve(ob.plannerOrTerminationCondition(ptc, spent))
+
+
+def _tree_size(planner, si) -> tuple[int, int]:
+    data = ob.PlannerData(si)
+    getattr(planner, "inner", planner).getPlannerData(data)
+    return int(data.numVertices()), int(data.numEdges())
+
+
+def benchmark_problem(
+    scene: Scene,
+    level_name: str,
+    orientation: str,
+    planners: Sequence[str],
+    runs: int,
+    budget: Budget,
+    seed: int,
+    experiment: str,
+    parameters: Mapping[str, float | int | str] | None = None,
+    settings: PlannerSettings | None = None,
+) -> BenchmarkResult:
+    """Benchmark ``planners`` (names of :data:`PLANNERS`) on the problem of reaching the
+    scene's goal from entry ``orientation`` at level ``level_name``, ``runs`` runs each.
+
+    ``parameters`` become the experiment's parameters in OMPL's log (REAL for floats,
+    INTEGER for ints, STRING otherwise), and so columns of Planner Arena's ``experiments``
+    table.
+    """
+    if runs < 1:
+        raise ValueError(f"runs = {runs} must be >= 1")
+    for name in planners:
+        if name.lower() not in PLANNERS:
+            raise ValueError(f"unknown planner '{name}'; planners: {', '.join(PLANNERS)}")
+    if not planners:
+        raise ValueError("need at least one planner")
+    settings = settings or PlannerSettings()
+    problem = control_problem(scene, level_name, orientation, seed, settings, count=True)
+    ss, si, level, counts = problem.ss, problem.si, problem.level, problem.counts
+    assert counts is not None
+    # Compile (or load from cache) the level's kernels before OMPL starts its clock.
+    start = level.state_of_pose(scene.start(orientation))
+    level.is_valid(start)
+    level.propagate(start, np.zeros(level.control_dim), settings.step)
+
+    bench = ot.Benchmark(ss, experiment)
+    for name in planners:
+        planner = make_planner(name, si)
+        if budget.propagations is not None:
+            planner = _PropagationBudget(si, planner, counts, budget.propagations)
+        bench.addPlanner(planner)
+    for key, value in (parameters or {}).items():
+        kind = "INTEGER" if isinstance(value, (int, np.integer)) else "REAL"
+        if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
+            kind = "STRING"
+        bench.addExperimentParameter(key, kind, str(value))
+
+    rows: list[dict] = []
+    at_start = [0, 0]
+
+    def pre_run(planner) -> None:
+        run = sum(1 for r in rows if r["planner"] == planner.getName())
+        seed_ompl(seed + run)
+        problem.goal.rng = np.random.default_rng(seed + run)
+        at_start[:] = counts
+
+    def post_run(planner, properties) -> None:
+        name = planner.getName()
+        run = sum(1 for r in rows if r["planner"] == name)
+        props = properties.to_dict()
+        pdef = planner.getProblemDefinition()
+        solved = bool(pdef.hasExactSolution())
+        exit_time = math.nan
+        if solved:
+            path = ss.getSolutionPath()
+            steps = range(path.getControlCount())
+            exit_time = float(sum(path.getControlDuration(i) for i in steps))
+        vertices, edges = _tree_size(planner, si)
+        rows.append(
+            {
+                "planner": name,
+                "run": run,
+                "seed": seed + run,
+                "solved": solved,
+                "approximate": props.get("approximate solution BOOLEAN") == "1",
+                "time_s": float(props.get("time REAL", "nan")),
+                "tree_size": vertices,
+                "tree_edges": edges,
+                "propagations": counts[1] - at_start[1],
+                "validity_checks": counts[0] - at_start[0],
+                "exit_time_s": exit_time,
+            }
+        )
+
+    bench.setPreRunEvent(pre_run)
+    bench.setPostRunEvent(post_run)
+    request = ot.Request(float(budget.time_s), MEMORY_LIMIT_MB, int(runs))
+    request.displayProgress = False
+    bench.benchmark(request)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "run.log"
+        if not bench.saveResultsToFile(str(path)):
+            raise RuntimeError("OMPL could not write its benchmark log")
+        text = path.read_text()
+    log = _augment_log(
+        text,
+        [[r for r in rows if r["planner"] == p] for p in _planner_names(rows)],
+        wrapped=budget.propagations is not None,
+    )
+    return BenchmarkResult(log=log, runs=rows)
+
+
+def _planner_names(rows: list[dict]) -> list[str]:
+    return list(dict.fromkeys(r["planner"] for r in rows))
+
+
+def _format(value: float | int | bool) -> str:
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    if isinstance(value, float) and not math.isfinite(value):
+        return ""  # OMPL's reader stores an empty value as NULL
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+def _augment_log(log: str, per_planner: list[list[dict]], wrapped: bool) -> str:
+    """Append :data:`EXTRA_PROPERTIES` to each planner's run properties in OMPL's log and,
+    for wrapped planners, put the inner tree's size in "graph states"/"graph motions"."""
+    lines = log.splitlines()
+    out: list[str] = []
+    i = planner = 0
+    header = re.compile(r"^(\d+) properties for each run$")
+    while i < len(lines):
+        match = header.match(lines[i])
+        if not match:
+            out.append(lines[i])
+            i += 1
+            continue
+        count = int(match.group(1))
+        names = [line.rsplit(" ", 1)[0] for line in lines[i + 1 : i + 1 + count]]
+        out.append(f"{count + len(EXTRA_PROPERTIES)} properties for each run")
+        out.extend(lines[i + 1 : i + 1 + count])
+        out.extend(f"{name} {kind}" for name, kind in EXTRA_PROPERTIES.items())
+        i += 1 + count
+        n_runs = int(lines[i].split()[0])
+        out.append(lines[i])
+        runs = per_planner[planner]
+        if len(runs) != n_runs:
+            raise RuntimeError(f"OMPL logged {n_runs} runs of a planner, we saw {len(runs)}")
+        for k in range(n_runs):
+            values = [v.strip() for v in lines[i + 1 + k].rstrip().rstrip(";").split(";")]
+            row = runs[k]
+            if wrapped:
+                for name, key in (("graph states", "tree_size"), ("graph motions", "tree_edges")):
+                    if name in names:
+                        values[names.index(name)] = str(row[key])
+            values += [
+                _format(row["solved"]),
+                _format(row["propagations"]),
+                _format(row["validity_checks"]),
+                _format(row["exit_time_s"]),
+            ]
+            out.append("; ".join(values) + "; ")
+        i += 1 + n_runs
+        planner += 1
+    return "\n".join(out) + "\n"
