@@ -19,6 +19,8 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from experiments.cli_sweep import add_parsers as add_sweep_parsers
+from experiments.cli_sweep import cmd_report, cmd_run
 from experiments.console import exit_now, set_ompl_logging
 
 ORIENTATIONS = ("heavy_leading", "heavy_trailing")
@@ -139,6 +141,7 @@ def _parser() -> argparse.ArgumentParser:
         "figure and the summary",
     )
     feas.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_sweep_parsers(sub)
     return parser
 
 
@@ -503,6 +506,8 @@ COMMANDS = {
     "calibrate": _cmd_calibrate,
     "bench": _cmd_bench,
     "feasibility": _cmd_feasibility,
+    "run": lambda args: cmd_run(args, UsageError),
+    "report": lambda args: cmd_report(args, UsageError),
 }
 
 

@@ -21,12 +21,12 @@ from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
+from experiments.proportions import wilson_interval
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import DegenerateDesign, build_feeder
 from feeders.halton import halton_points
 
 ORIENTATIONS = ("heavy_leading", "heavy_trailing")
-Z95 = 1.959963984540054  # two-sided 95% quantile of the standard normal
 
 # The four cells of the 2x2 agreement table, in display order.
 AGREEMENT_CLASSES = ("both", "a_only", "b_only", "neither")
@@ -196,28 +196,6 @@ def compare_levels(
                 pool.shutdown(wait=True, cancel_futures=True)
                 raise
     return [rows[(job[0], job[1])] for job in jobs]
-
-
-def wilson_interval(successes: int, trials: int, z: float = Z95) -> tuple[float, float]:
-    """Wilson score interval for a binomial proportion (95% for the default ``z``).
-
-    E. B. Wilson (1927), "Probable inference, the law of succession, and statistical
-    inference", J. Am. Stat. Assoc. 22(158):209-212. With p = k/n:
-    centre = (p + z^2/(2n)) / (1 + z^2/n),
-    half-width = z / (1 + z^2/n) * sqrt(p(1-p)/n + z^2/(4n^2)).
-    Unlike p +- z sqrt(p(1-p)/n) it stays inside [0, 1] and is not empty at k = 0 or k = n,
-    which matters for fractions near 0 or 1 on a few hundred designs. No trials: (0, 1).
-    """
-    if trials < 0 or not 0 <= successes <= trials:
-        raise ValueError(f"need 0 <= successes <= trials, got {successes} of {trials}")
-    if trials == 0:
-        return 0.0, 1.0
-    p = successes / trials
-    z2 = z * z
-    denominator = 1.0 + z2 / trials
-    centre = (p + z2 / (2 * trials)) / denominator
-    half = z / denominator * math.sqrt(p * (1 - p) / trials + z2 / (4 * trials * trials))
-    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 def _fraction(successes: int, trials: int) -> dict:

@@ -31,12 +31,13 @@ import yaml
 
 from feeders.design import DesignError, DesignParameters, preset
 from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.fields import FieldError, mapping_field, number_field, numbers_field
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
 
 
-class SceneError(ValueError):
+class SceneError(FieldError):
     """A scene file that cannot be read or is not valid; the message names the field."""
 
 
@@ -55,35 +56,11 @@ _TOP_KEYS = {
 }
 
 
-def _number(value: Any, field: str, low: float = -math.inf, high: float = math.inf) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(f"{field}: expected a number, got {value!r}")
-    value = float(value)
-    if not (math.isfinite(value) and low <= value <= high):
-        raise SceneError(f"{field} = {value!r} is outside the allowed range [{low:g}, {high:g}]")
-    return value
-
-
-def _numbers(value: Any, field: str, count: int) -> list[float]:
-    if not isinstance(value, (list, tuple)) or len(value) != count:
-        raise SceneError(f"{field}: expected a list of {count} numbers, got {value!r}")
-    return [_number(v, f"{field}[{i}]") for i, v in enumerate(value)]
-
-
-def _mapping(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
-    if not isinstance(value, dict):
-        raise SceneError(f"{field}: expected a mapping, got {value!r}")
-    unknown = sorted(set(value) - allowed)
-    if unknown:
-        raise SceneError(f"{field}: unknown key(s) {unknown}; allowed: {sorted(allowed)}")
-    return value
-
-
 def _part(spec: Any) -> Peg:
     if spec is None:
         return Peg.two_density()
-    spec = _mapping(spec, "part", {"length", "width", "mass", "heavy_fraction"})
-    args = {k: _number(v, f"part.{k}") for k, v in spec.items()}
+    spec = mapping_field(spec, "part", {"length", "width", "mass", "heavy_fraction"})
+    args = {k: number_field(v, f"part.{k}") for k, v in spec.items()}
     try:
         return Peg.two_density(**args)
     except PartError as exc:
@@ -93,14 +70,14 @@ def _part(spec: Any) -> Peg:
 def _inputs(spec: Any) -> InputSet:
     if spec is None:
         return InputSet()
-    spec = _mapping(spec, "inputs", {"max_speed", "max_turn", "max_force", "max_torque"})
+    spec = mapping_field(spec, "inputs", {"max_speed", "max_turn", "max_force", "max_torque"})
     low = {"max_speed": 1e-9, "max_turn": 1e-9, "max_force": 0.0, "max_torque": 0.0}
-    args = {k: _number(v, f"inputs.{k}", low[k], 1e3) for k, v in spec.items()}
+    args = {k: number_field(v, f"inputs.{k}", low[k], 1e3) for k, v in spec.items()}
     return InputSet(**args)
 
 
 def _design(spec: Any) -> DesignParameters:
-    spec = _mapping(spec, "feeder", {"preset", "design"})
+    spec = mapping_field(spec, "feeder", {"preset", "design"})
     if ("preset" in spec) == ("design" in spec):
         raise SceneError("feeder: give exactly one of 'preset' or 'design'")
     try:
@@ -119,7 +96,7 @@ def _obstacles(spec: Any) -> Obstacles:
     polygons, circles, labels_p, labels_c = [], [], [], []
     for i, item in enumerate(spec):
         field = f"obstacles[{i}]"
-        item = _mapping(item, field, {"polygon", "circle", "label"})
+        item = mapping_field(item, field, {"polygon", "circle", "label"})
         label = str(item.get("label", field))
         if ("polygon" in item) == ("circle" in item):
             raise SceneError(f"{field}: give exactly one of 'polygon' or 'circle'")
@@ -127,7 +104,7 @@ def _obstacles(spec: Any) -> Obstacles:
             pts = item["polygon"]
             if not isinstance(pts, list):
                 raise SceneError(f"{field}.polygon: expected a list of [x, y] points")
-            pts = [_numbers(p, f"{field}.polygon[{k}]", 2) for k, p in enumerate(pts)]
+            pts = [numbers_field(p, f"{field}.polygon[{k}]", 2) for k, p in enumerate(pts)]
             try:
                 pieces = convex_pieces(pts, field=f"{field}.polygon")
             except ShapeError as exc:
@@ -135,11 +112,11 @@ def _obstacles(spec: Any) -> Obstacles:
             polygons += pieces
             labels_p += [label] * len(pieces)
         else:
-            c = _mapping(item["circle"], f"{field}.circle", {"centre", "radius"})
+            c = mapping_field(item["circle"], f"{field}.circle", {"centre", "radius"})
             if "centre" not in c or "radius" not in c:
                 raise SceneError(f"{field}.circle: needs 'centre' and 'radius'")
-            cx, cy = _numbers(c["centre"], f"{field}.circle.centre", 2)
-            circles.append((cx, cy, _number(c["radius"], f"{field}.circle.radius", 1e-9, 1e6)))
+            cx, cy = numbers_field(c["centre"], f"{field}.circle.centre", 2)
+            circles.append((cx, cy, number_field(c["radius"], f"{field}.circle.radius", 1e-9, 1e6)))
             labels_c.append(label)
     return Obstacles(
         tuple(polygons), np.array(circles, dtype=float).reshape(-1, 3), tuple(labels_p + labels_c)
@@ -147,12 +124,12 @@ def _obstacles(spec: Any) -> Obstacles:
 
 
 def _goal(spec: Any) -> Goal:
-    spec = _mapping(spec, "goal", {"x", "y", "yaw", "yaw_tol"})
+    spec = mapping_field(spec, "goal", {"x", "y", "yaw", "yaw_tol"})
     for key in ("x", "y", "yaw", "yaw_tol"):
         if key not in spec:
             raise SceneError(f"goal.{key} is required")
-    x = _numbers(spec["x"], "goal.x", 2)
-    y = _numbers(spec["y"], "goal.y", 2)
+    x = numbers_field(spec["x"], "goal.x", 2)
+    y = numbers_field(spec["y"], "goal.y", 2)
     if x[0] >= x[1] or y[0] >= y[1]:
         raise SceneError("goal.x and goal.y must be [low, high] with low < high")
     return Goal(
@@ -160,20 +137,54 @@ def _goal(spec: Any) -> Goal:
         x[1],
         y[0],
         y[1],
-        _number(spec["yaw"], "goal.yaw", -math.pi, math.pi),
-        _number(spec["yaw_tol"], "goal.yaw_tol", 1e-6, math.pi),
+        number_field(spec["yaw"], "goal.yaw", -math.pi, math.pi),
+        number_field(spec["yaw_tol"], "goal.yaw_tol", 1e-6, math.pi),
     )
+
+
+ENVIRONMENT_KEYS = {"part", "friction", "restitution", "gravity", "inputs"}
+
+
+def environment_from_dict(data: dict[str, Any], prefix: str = "") -> dict[str, Any]:
+    """What a feeder's scene needs besides its design, from the keys of
+    :data:`ENVIRONMENT_KEYS` in ``data`` (others are ignored): keyword arguments of
+    :func:`build_feeder` (``part``, ``inputs``, ``friction``, ``gravity``, ``restitution``).
+    Errors name the field with ``prefix`` before it."""
+    try:
+        return {
+            "part": _part(data.get("part")),
+            "friction": number_field(data.get("friction", 0.3), f"{prefix}friction", 0.0, 10.0),
+            "restitution": number_field(
+                data.get("restitution", 0.3), f"{prefix}restitution", 0.0, 1.0
+            ),
+            "gravity": tuple(
+                numbers_field(data.get("gravity", [0.0, -9.81]), f"{prefix}gravity", 2)
+            ),
+            "inputs": _inputs(data.get("inputs")),
+        }
+    except FieldError as exc:
+        message = str(exc)
+        if prefix and message.startswith(("part", "inputs")):
+            message = prefix + message
+        raise SceneError(message) from None
 
 
 def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     """Validate a parsed YAML document and build its scene."""
-    data = _mapping(data, "scene", _TOP_KEYS)
+    try:
+        return _scene_from_dict(data, name)
+    except SceneError:
+        raise
+    except FieldError as exc:
+        raise SceneError(str(exc)) from None
+
+
+def _scene_from_dict(data: Any, name: str) -> Scene:
+    data = mapping_field(data, "scene", _TOP_KEYS)
     name = str(data.get("name", name))
-    part = _part(data.get("part"))
-    friction = _number(data.get("friction", 0.3), "friction", 0.0, 10.0)
-    restitution = _number(data.get("restitution", 0.3), "restitution", 0.0, 1.0)
-    gravity = tuple(_numbers(data.get("gravity", [0.0, -9.81]), "gravity", 2))
-    inputs = _inputs(data.get("inputs"))
+    env = environment_from_dict(data)
+    part, friction, restitution = env["part"], env["friction"], env["restitution"]
+    gravity, inputs = env["gravity"], env["inputs"]
     if ("feeder" in data) == ("obstacles" in data):
         raise SceneError(
             "scene: give exactly one of 'feeder' (parametric) or 'obstacles' (free-form)"
@@ -197,13 +208,13 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     for key in ("bounds", "starts", "goal"):
         if key not in data:
             raise SceneError(f"scene: '{key}' is required for a free-form scene")
-    bounds = _numbers(data["bounds"], "bounds", 4)
+    bounds = numbers_field(data["bounds"], "bounds", 4)
     if bounds[0] >= bounds[1] or bounds[2] >= bounds[3]:
         raise SceneError("bounds must be [x_min, x_max, y_min, y_max] with min < max")
     starts_spec = data["starts"]
     if not isinstance(starts_spec, dict) or not starts_spec:
         raise SceneError("starts: expected a mapping name: [x, y, yaw]")
-    starts = {str(k): tuple(_numbers(v, f"starts.{k}", 3)) for k, v in starts_spec.items()}
+    starts = {str(k): tuple(numbers_field(v, f"starts.{k}", 3)) for k, v in starts_spec.items()}
     return Scene(
         name=name,
         obstacles=_obstacles(data["obstacles"]),
