@@ -8,6 +8,7 @@ uninterrupted run of the same config on the local executor.
 
 from __future__ import annotations
 
+import itertools
 import os
 import signal
 import sqlite3
@@ -51,7 +52,7 @@ def test_every_design_is_tried_at_the_first_rung_and_only_survivors_or_holdout_g
     }
     levels = [r.level for r in config.ladder]
     assert {d for d, lv in status if lv == levels[0]} == set(range(config.count))
-    for below, above in zip(levels, levels[1:], strict=False):
+    for below, above in itertools.pairwise(levels):
         climbed = {d for d, lv in status if lv == above}
         expected = {
             d for (d, lv), s in status.items() if lv == below and (s == "feasible" or d in holdout)
