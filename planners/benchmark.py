@@ -5,14 +5,18 @@ OMPL's ``Benchmark`` runs each planner ``runs`` times on one setup and writes th
 not do are added here, without changing what it measures:
 
 - a machine-independent budget: a count of propagations. ``Benchmark`` only takes a time
-  limit, so the planner is wrapped in one whose ``solve`` ORs OMPL's timed termination
-  condition with "propagations >= budget" (the time limit stays as a cap);
-- metrics of our own: whether the goal was reached exactly, propagations, validity checks,
-  the duration of the solution's controls (the time the part takes to leave, Eq. 10). OMPL
-  drops properties added in a post-run event, so they are collected in the pre/post-run
-  events and appended to the log as run properties (Planner Arena shows them as columns);
+  limit, so each planner is wrapped in one whose ``solve`` ORs OMPL's timed termination
+  condition with "propagations >= budget" (the time limit stays as a cap). A run ends after
+  the planner iteration in which the count reaches the budget (a few dozen propagations);
+- metrics of our own: whether the goal was reached exactly, propagations and validity checks
+  made while solving (not the ones Benchmark makes afterwards to check the path), the
+  duration of the solution's controls (the time the part takes to leave, Eq. 10). OMPL drops
+  properties added in a post-run event, so they are collected in the wrapper and the
+  post-run event and appended to the log as run properties (Planner Arena shows them);
 - the wrapped planner's tree: OMPL cannot call a Python override of ``getPlannerData``, so the
-  wrapper's "graph states" and "graph motions" are replaced by its inner planner's.
+  wrapper's "graph states" and "graph motions" are replaced by its inner planner's. The
+  wrapper's name is the inner planner's ("RRT", "KPIECE1", "EST"); its settings are not in
+  the log's "common properties" (OMPL reads them from the planner it holds, the wrapper).
 
 Every run is seeded (OMPL's generator and the goal sampler) with ``seed + run``, so planner A's
 run r and planner B's run r start from the same seed, and the same arguments give the same
@@ -79,14 +83,18 @@ class BenchmarkResult:
     runs: list[dict]
 
 
-class _PropagationBudget(ob.Planner):
-    """``inner`` stopped after ``budget`` propagations (or by OMPL's own condition)."""
+class _Counted(ob.Planner):
+    """``inner``, with the propagations and validity checks it made while solving (OMPL's
+    Benchmark re-propagates the solution afterwards to check it: that is not the planner's
+    work) and, with a ``budget``, stopped once it has made that many propagations in this run
+    (or by OMPL's own condition)."""
 
-    def __init__(self, si, inner, counts: list[int], budget: int):
+    def __init__(self, si, inner, counts: list[int], budget: int | None):
         super().__init__(si, inner.getName())
         self.inner = inner
         self.counts = counts
         self.budget = budget
+        self.spent = [0, 0]
 
     def clear(self) -> None:
         super().clear()
@@ -95,14 +103,20 @@ class _PropagationBudget(ob.Planner):
     def solve(self, ptc):
         self.inner.setProblemDefinition(self.getProblemDefinition())
         self.inner.setup()
-        stop_at = self.counts[1] + self.budget
-        spent = ob.PlannerTerminationCondition(lambda: self.counts[1] >= stop_at)
-        return self.inner.solve(ob.plannerOrTerminationCondition(ptc, spent))
+        start = list(self.counts)
+        if self.budget is not None:
+            stop_at = start[1] + self.budget
+            spent = ob.PlannerTerminationCondition(lambda: self.counts[1] >= stop_at)
+            ptc = ob.plannerOrTerminationCondition(ptc, spent)
+        try:
+            return self.inner.solve(ptc)
+        finally:
+            self.spent = [self.counts[0] - start[0], self.counts[1] - start[1]]
 
 
 def _tree_size(planner, si) -> tuple[int, int]:
     data = ob.PlannerData(si)
-    getattr(planner, "inner", planner).getPlannerData(data)
+    planner.inner.getPlannerData(data)
     return int(data.numVertices()), int(data.numEdges())
 
 
@@ -143,10 +157,7 @@ def benchmark_problem(
 
     bench = ot.Benchmark(ss, experiment)
     for name in planners:
-        planner = make_planner(name, si)
-        if budget.propagations is not None:
-            planner = _PropagationBudget(si, planner, counts, budget.propagations)
-        bench.addPlanner(planner)
+        bench.addPlanner(_Counted(si, make_planner(name, si), counts, budget.propagations))
     for key, value in (parameters or {}).items():
         kind = "INTEGER" if isinstance(value, (int, np.integer)) else "REAL"
         if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
@@ -154,13 +165,11 @@ def benchmark_problem(
         bench.addExperimentParameter(key, kind, str(value))
 
     rows: list[dict] = []
-    at_start = [0, 0]
 
     def pre_run(planner) -> None:
         run = sum(1 for r in rows if r["planner"] == planner.getName())
         seed_ompl(seed + run)
         problem.goal.rng = np.random.default_rng(seed + run)
-        at_start[:] = counts
 
     def post_run(planner, properties) -> None:
         name = planner.getName()
@@ -184,8 +193,8 @@ def benchmark_problem(
                 "time_s": float(props.get("time REAL", "nan")),
                 "tree_size": vertices,
                 "tree_edges": edges,
-                "propagations": counts[1] - at_start[1],
-                "validity_checks": counts[0] - at_start[0],
+                "propagations": planner.spent[1],
+                "validity_checks": planner.spent[0],
                 "exit_time_s": exit_time,
             }
         )
@@ -203,7 +212,6 @@ def benchmark_problem(
     log = _augment_log(
         text,
         [[r for r in rows if r["planner"] == p] for p in _planner_names(rows)],
-        wrapped=budget.propagations is not None,
     )
     return BenchmarkResult(log=log, runs=rows)
 
@@ -220,9 +228,9 @@ def _format(value: float | int | bool) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def _augment_log(log: str, per_planner: list[list[dict]], wrapped: bool) -> str:
-    """Append :data:`EXTRA_PROPERTIES` to each planner's run properties in OMPL's log and,
-    for wrapped planners, put the inner tree's size in "graph states"/"graph motions"."""
+def _augment_log(log: str, per_planner: list[list[dict]]) -> str:
+    """Append :data:`EXTRA_PROPERTIES` to each planner's run properties in OMPL's log and
+    put the inner planner's tree size in "graph states" and "graph motions"."""
     lines = log.splitlines()
     out: list[str] = []
     i = planner = 0
@@ -247,10 +255,9 @@ def _augment_log(log: str, per_planner: list[list[dict]], wrapped: bool) -> str:
         for k in range(n_runs):
             values = [v.strip() for v in lines[i + 1 + k].rstrip().rstrip(";").split(";")]
             row = runs[k]
-            if wrapped:
-                for name, key in (("graph states", "tree_size"), ("graph motions", "tree_edges")):
-                    if name in names:
-                        values[names.index(name)] = str(row[key])
+            for name, key in (("graph states", "tree_size"), ("graph motions", "tree_edges")):
+                if name in names:
+                    values[names.index(name)] = str(row[key])
             values += [
                 _format(row["solved"]),
                 _format(row["propagations"]),
