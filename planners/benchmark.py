@@ -203,6 +203,7 @@ def benchmark_problem(
     bench.setPostRunEvent(post_run)
     request = ot.Request(float(budget.time_s), MEMORY_LIMIT_MB, int(runs))
     request.displayProgress = False
+    request.saveConsoleOutput = False  # else an ompl_<host>_<date>.console file per experiment
     bench.benchmark(request)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "run.log"

@@ -114,3 +114,10 @@ def test_bad_arguments_name_what_is_wrong() -> None:
         Budget(1.0, 0)
     with pytest.raises(ValueError, match="budget time = -1"):
         Budget(-1.0)
+
+
+def test_nothing_is_written_to_the_working_directory(tmp_path, monkeypatch) -> None:
+    """OMPL's Benchmark saves an ompl_<host>_<date>.console file per experiment unless told."""
+    monkeypatch.chdir(tmp_path)
+    _bench(Budget(0.1), planners=("rrt",), runs=1)
+    assert list(tmp_path.iterdir()) == []
