@@ -162,17 +162,15 @@ def run_dask(
     on_done: OnDone,
     on_quarantine: OnQuarantine,
     scheduler: str,
-    max_attempts: int = 2,
 ) -> None:
     """The same as :func:`run_local` on the Dask cluster whose scheduler is at ``scheduler``
     (``tcp://host:port``). Its workers need partfeeder installed. Dask replaces a dead worker
-    and reschedules its task; after the scheduler's ``allowed-failures`` deaths it gives up
-    (``KilledWorker``) and the job is quarantined. ``max_attempts`` is Dask's to enforce
-    (set ``distributed.scheduler.allowed-failures``); it is recorded, not used, here.
+    and reschedules its task; after the scheduler's ``distributed.scheduler.allowed-failures``
+    deaths (Dask's setting, 3 by default, not the config's ``max_attempts``) it gives up
+    (``KilledWorker``) and the job is quarantined.
     """
     try:
         from distributed import Client, as_completed
-        from distributed.client import FutureCancelledError
     except ImportError:
         raise RuntimeError(
             "the dask executor needs Dask's distributed scheduler: "
@@ -183,7 +181,9 @@ def run_dask(
     except ImportError:  # older releases
         from distributed import KilledWorker  # type: ignore[attr-defined,no-redef]
 
-    del max_attempts
+    import dask
+
+    deaths = int(dask.config.get("distributed.scheduler.allowed-failures", 3)) + 1
     with Client(scheduler, set_as_default=False) as client:
         client.run(quiet_worker)
         futures = {}
@@ -195,9 +195,7 @@ def run_dask(
             try:
                 result = future.result()
             except KilledWorker as exc:
-                on_quarantine(job, 1, f"its Dask worker died every time it ran it ({exc})")
-            except FutureCancelledError as exc:
-                on_quarantine(job, 1, _error(exc))
+                on_quarantine(job, deaths, f"its Dask worker died every time it ran it ({exc})")
             except Exception as exc:
                 on_quarantine(job, 1, _error(exc))
             else:

@@ -152,7 +152,7 @@ def _climb(
     elif executor == "dask":
         if not scheduler:
             raise ValueError("the dask executor needs --scheduler ADDRESS (tcp://host:port)")
-        run_dask(evaluate, jobs, on_done, on_quarantine, scheduler, config.max_attempts)
+        run_dask(evaluate, jobs, on_done, on_quarantine, scheduler)
     else:
         raise ValueError(f"unknown executor '{executor}'; executors: local, dask")
 
