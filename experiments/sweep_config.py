@@ -33,9 +33,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
-from feeders.fields import FieldError, integer_field, mapping_field, number_field
+from feeders.fields import FieldError, integer_field, mapping_field, number_field, read_yaml
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
 CONFIG_DIR = Path(__file__).parent / "configs"
@@ -206,14 +204,7 @@ def load_config(path: str | Path) -> SweepConfig:
     path = Path(path)
     if not path.exists() and (CONFIG_DIR / f"{path.name}.yaml").exists() and path.suffix == "":
         path = CONFIG_DIR / f"{path.name}.yaml"
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise ConfigError(f"cannot read config file '{path}': {exc.strerror}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise ConfigError(f"'{path}' is not valid YAML: {str(exc).splitlines()[0]}") from None
+    data = read_yaml(path, "config", ConfigError)
     try:
         return config_from_dict(data, name=path.stem)
     except ConfigError as exc:

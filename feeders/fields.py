@@ -4,7 +4,10 @@ the field and its allowed range, so a user can fix the file without reading our 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
+
+import yaml
 
 
 class FieldError(ValueError):
@@ -45,3 +48,25 @@ def mapping_field(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
     if unknown:
         raise FieldError(f"{field}: unknown key(s) {unknown}; allowed: {sorted(allowed)}")
     return value
+
+
+def _yaml_problem(exc: yaml.YAMLError) -> str:
+    """PyYAML's error on one line: the problem and where it is."""
+    problem = getattr(exc, "problem", None)
+    mark = getattr(exc, "problem_mark", None)
+    if problem and mark is not None:
+        return f"{problem} (line {mark.line + 1}, column {mark.column + 1})"
+    return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+
+
+def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
+    """The document in the YAML file ``path`` (``yaml.safe_load``); a file that cannot be read
+    or parsed raises ``error`` naming the file (``kind``: what it is, for the message)."""
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise error(f"cannot read {kind} file '{path}': {exc.strerror}") from None
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        raise error(f"'{path}' is not valid YAML: {_yaml_problem(exc)}") from None

@@ -27,11 +27,10 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import yaml
 
 from feeders.design import DesignError, DesignParameters, preset
 from feeders.feeder import DegenerateDesign, build_feeder
-from feeders.fields import FieldError, mapping_field, number_field, numbers_field
+from feeders.fields import FieldError, mapping_field, number_field, numbers_field, read_yaml
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
@@ -229,26 +228,10 @@ def _scene_from_dict(data: Any, name: str) -> Scene:
     )
 
 
-def _yaml_problem(exc: yaml.YAMLError) -> str:
-    """PyYAML's error on one line: the problem and where it is."""
-    problem = getattr(exc, "problem", None)
-    mark = getattr(exc, "problem_mark", None)
-    if problem and mark is not None:
-        return f"{problem} (line {mark.line + 1}, column {mark.column + 1})"
-    return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-
-
 def load_scene(path: str | Path) -> Scene:
     """Read a scene file; any problem is a :class:`SceneError` naming the file and field."""
     path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise SceneError(f"cannot read scene file '{path}': {exc.strerror}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise SceneError(f"'{path}' is not valid YAML: {_yaml_problem(exc)}") from None
+    data = read_yaml(path, "scene", SceneError)
     try:
         return scene_from_dict(data, name=path.stem)
     except SceneError as exc:

@@ -3,27 +3,16 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
+from cli_process import ROOT, run_cli
 
 from experiments.cli import run
 
-ROOT = Path(__file__).resolve().parents[2]
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
-def _cli(*args: str) -> subprocess.CompletedProcess:
-    """The real entry point in a fresh process (so exit-time output is seen too)."""
-    return subprocess.run(
-        [sys.executable, "-c", "from experiments.cli import main; main()", *args],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+_cli = run_cli
 
 
 def test_plan_both_orientations_prints_summary_and_writes_picture(tmp_path):

@@ -5,27 +5,15 @@ the report and OMPL's database on disk, nothing else on stderr, and one clear li
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import yaml
+from cli_process import run_cli
 from sweep_fixtures import TINY
 
 from experiments.sweep_config import load_config
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def _cli(*args: str) -> subprocess.CompletedProcess:
-    """The real entry point in a fresh process (so exit-time output is seen too)."""
-    return subprocess.run(
-        [sys.executable, "-c", "from experiments.cli import main; main()", *args],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+_cli = run_cli
 
 
 def _config(tmp_path: Path, **changes) -> Path:
