@@ -11,11 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from feeders.design import PAPER_GEOMETRIC_VERDICT, PRESETS
-from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.part import DEFAULT_PEG, Peg
 from planners.plan import plan
-
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 
 
 @dataclass(frozen=True)

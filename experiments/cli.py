@@ -22,8 +22,7 @@ from pathlib import Path
 from experiments.cli_sweep import add_parsers as add_sweep_parsers
 from experiments.cli_sweep import cmd_report, cmd_run
 from experiments.console import exit_now, set_ompl_logging
-
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
+from feeders.feeder import ORIENTATIONS
 
 
 class UsageError(Exception):
@@ -283,7 +282,6 @@ def _cmd_calibrate(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
     from experiments.atlas import corner_census, draw_atlas
-    from experiments.calibration import ORIENTATIONS as CAL_ORIENTATIONS
     from experiments.calibration import calibrate, markdown_table
     from feeders.design import PRESETS
 
@@ -291,7 +289,7 @@ def _cmd_calibrate(args: argparse.Namespace) -> int:
         raise UsageError(f"--runs = {args.runs} must be >= 1")
     if not (0.0 < args.time <= 3600.0):
         raise UsageError(f"--time = {args.time} is outside the allowed range (0, 3600] s")
-    with tqdm(total=len(PRESETS) * len(CAL_ORIENTATIONS), desc="calibrating", unit="run") as bar:
+    with tqdm(total=len(PRESETS) * len(ORIENTATIONS), desc="calibrating", unit="run") as bar:
         rows = calibrate(
             runs=args.runs,
             time_limit=args.time,

@@ -101,6 +101,21 @@ def run_local(
 
     pool = new_pool()
     inflight: dict[Future, Job] = {}
+
+    def settle(future: Future) -> bool:
+        """Hand a finished future's job on; True if its worker (and so the pool) died."""
+        job = inflight.pop(future)
+        try:
+            result = future.result()
+        except BrokenProcessPool:
+            suspects.append(job)
+            return True
+        except Exception as exc:
+            on_quarantine(job, 1, _error(exc))
+        else:
+            queue.extend(on_done(job, result, 1))
+        return False
+
     try:
         while queue or inflight or suspects:
             if suspects and not inflight:
@@ -126,30 +141,11 @@ def run_local(
                 job = queue.popleft()
                 inflight[pool.submit(evaluate, job)] = job
             done, _ = wait(inflight, return_when=FIRST_COMPLETED)
-            broken = False
-            for future in done:
-                job = inflight.pop(future)
-                try:
-                    result = future.result()
-                except BrokenProcessPool:
-                    broken = True
-                    suspects.append(job)
-                except Exception as exc:
-                    on_quarantine(job, 1, _error(exc))
-                else:
-                    queue.extend(on_done(job, result, 1))
-            if broken:
-                for future in list(inflight):  # they fail with the pool
-                    wait([future])
-                    job = inflight.pop(future)
-                    try:
-                        result = future.result()
-                    except BrokenProcessPool:
-                        suspects.append(job)
-                    except Exception as exc:
-                        on_quarantine(job, 1, _error(exc))
-                    else:
-                        queue.extend(on_done(job, result, 1))
+            broken = [settle(future) for future in done]
+            if any(broken):
+                wait(inflight)  # the others fail with the pool: they become suspects too
+                for future in list(inflight):
+                    settle(future)
                 pool.shutdown(wait=True, cancel_futures=True)
                 pool = new_pool()
     finally:

@@ -23,10 +23,8 @@ from pathlib import Path
 
 from experiments.proportions import wilson_interval
 from feeders.design import PARAMETER_NAMES, DesignParameters
-from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.halton import halton_points
-
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 
 # The four cells of the 2x2 agreement table, in display order.
 AGREEMENT_CLASSES = ("both", "a_only", "b_only", "neither")

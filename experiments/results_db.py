@@ -32,7 +32,6 @@ from typing import Any
 
 from feeders.design import PARAMETER_NAMES
 
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 STATUSES = ("feasible", "infeasible", "degenerate")
 RUN_COLUMNS = (
     "planner",

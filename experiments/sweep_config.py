@@ -29,11 +29,18 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from feeders.fields import FieldError, integer_field, mapping_field, number_field, read_yaml
+from feeders.fields import (
+    FieldError,
+    field_errors_as,
+    integer_field,
+    mapping_field,
+    number_field,
+    read_yaml,
+)
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
 CONFIG_DIR = Path(__file__).parent / "configs"
@@ -101,9 +108,6 @@ class SweepConfig:
         data.pop("name")
         return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
 
-    def with_count(self, count: int) -> SweepConfig:
-        return config_from_dict({**self.to_dict(), "designs": {"count": count, "seed": self.seed}})
-
 
 def _rung(spec: Any, field_name: str) -> Rung:
     spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget"})
@@ -139,12 +143,8 @@ def _rung(spec: Any, field_name: str) -> Rung:
 
 def config_from_dict(data: Any, name: str = "sweep") -> SweepConfig:
     """Validate a parsed YAML document; raises :class:`ConfigError` naming the field."""
-    try:
+    with field_errors_as(ConfigError):
         return _config_from_dict(data, name)
-    except ConfigError:
-        raise
-    except FieldError as exc:
-        raise ConfigError(str(exc)) from None
 
 
 def _config_from_dict(data: Any, name: str) -> SweepConfig:
@@ -209,8 +209,3 @@ def load_config(path: str | Path) -> SweepConfig:
         return config_from_dict(data, name=path.stem)
     except ConfigError as exc:
         raise ConfigError(f"{path}: {exc}") from None
-
-
-def rung_dict(rung: Rung) -> dict[str, Any]:
-    """A rung as plain data (for jobs sent to workers)."""
-    return asdict(rung)

@@ -16,10 +16,8 @@ from typing import Any
 import numpy as np
 
 from feeders.design import PARAMETER_NAMES, DesignParameters
-from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
-
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 
 
 def run_seed(sweep_seed: int, design_id: int, rung: int) -> int:

@@ -37,6 +37,8 @@ from feeders.shapes import Obstacles
 
 WALL_THICKNESS = 0.4
 START_CLEARANCE = 0.05  # gap between the part and the cap at the top of the input chute
+# The feeder's two entries: the peg enters heavy end first or last; a design must serve both.
+ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 GOAL_YAW_TOL = 0.35  # rad: "heavy end down" within 20 degrees
 
 
@@ -299,7 +301,7 @@ def build_feeder(
     nrm = np.array([-math.sin(p.theta), math.cos(p.theta)])
     centre = np.array([p.gx, p.gy]) + (p.d - part.length / 2 - START_CLEARANCE) * u + p.a / 2 * nrm
     starts: dict[str, Pose] = {}
-    for orientation, yaw in (("heavy_leading", p.theta + math.pi), ("heavy_trailing", p.theta)):
+    for orientation, yaw in zip(ORIENTATIONS, (p.theta + math.pi, p.theta), strict=True):
         yaw = wrap_angle(yaw)
         com = centre + part.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
         starts[orientation] = (float(com[0]), float(com[1]), yaw)

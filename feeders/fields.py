@@ -4,6 +4,8 @@ the field and its allowed range, so a user can fix the file without reading our 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -12,6 +14,18 @@ import yaml
 
 class FieldError(ValueError):
     """A field of a document that is missing, of the wrong type or out of range."""
+
+
+@contextmanager
+def field_errors_as(error: type[FieldError]) -> Iterator[None]:
+    """Inside, a :class:`FieldError` of another kind is raised as ``error`` (same message), so
+    a document's reader raises its own error type whichever helper found the problem."""
+    try:
+        yield
+    except error:
+        raise
+    except FieldError as exc:
+        raise error(str(exc)) from None
 
 
 def number_field(value: Any, field: str, low: float = -math.inf, high: float = math.inf) -> float:

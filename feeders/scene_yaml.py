@@ -30,7 +30,14 @@ import numpy as np
 
 from feeders.design import DesignError, DesignParameters, preset
 from feeders.feeder import DegenerateDesign, build_feeder
-from feeders.fields import FieldError, mapping_field, number_field, numbers_field, read_yaml
+from feeders.fields import (
+    FieldError,
+    field_errors_as,
+    mapping_field,
+    number_field,
+    numbers_field,
+    read_yaml,
+)
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
@@ -170,12 +177,8 @@ def environment_from_dict(data: dict[str, Any], prefix: str = "") -> dict[str, A
 
 def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     """Validate a parsed YAML document and build its scene."""
-    try:
+    with field_errors_as(SceneError):
         return _scene_from_dict(data, name)
-    except SceneError:
-        raise
-    except FieldError as exc:
-        raise SceneError(str(exc)) from None
 
 
 def _scene_from_dict(data: Any, name: str) -> Scene:

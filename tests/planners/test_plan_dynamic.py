@@ -18,12 +18,11 @@ import pytest
 import shapely
 
 from feeders.design import PRESETS
-from feeders.feeder import build_feeder
+from feeders.feeder import ORIENTATIONS, build_feeder
 from feeders.scene import InputSet, Scene
 from planners.plan import PlannerSettings, plan
 from validity import make_level
 
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 SEEDS = (1, 2, 3, 4, 5)
 BUDGET_S = 10.0
 STEP = PlannerSettings().step  # OMPL's propagation step (s)

@@ -18,11 +18,10 @@ import shapely
 from shapely.geometry import Polygon
 
 from feeders.design import PRESETS
-from feeders.feeder import build_feeder
+from feeders.feeder import ORIENTATIONS, build_feeder
 from planners.plan import PlannerSettings, plan
 from validity import make_level
 
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 BUDGET_S = 10.0
 RUNS = 20
 SUBDIVISIONS = 10  # states re-checked between two consecutive steps of the fine path

@@ -17,12 +17,11 @@ import pytest
 import shapely
 
 from feeders.design import PRESETS
-from feeders.feeder import build_feeder
+from feeders.feeder import ORIENTATIONS, build_feeder
 from feeders.scene import Scene
 from planners.plan import PlannerSettings, PlanResult, plan
 from validity import make_level
 
-ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 STEP = PlannerSettings().step  # OMPL's propagation step (s)
 AREA_TOL = 1e-12  # shapely overlap area still counted as touching (length^2)
 
