@@ -26,7 +26,7 @@ from validity.geometry_kernel import _box_gap, _box_of, _edge_normal
 MAX_CONTACTS = 12  # a planar convex part touches at most a few features; deeper ones are kept
 _TINY = 1e-14
 _ALL_TRUE = np.ones(1, dtype=np.bool_)  # read-only default: every edge and vertex is real
-_SEAM_PROBE = 1e-7  # how far beyond an edge (length) another piece must be for a seam
+_SEAM_PROBE = 1e-7  # how far past a vertex (length) the solid is probed for a flat joint
 
 
 @njit(cache=True)
@@ -37,29 +37,6 @@ def _contains(b: np.ndarray, nb: int, px: float, py: float) -> bool:
         if ok and nx * (px - b[i, 0]) + ny * (py - b[i, 1]) > 0.0:
             return False
     return True
-
-
-@njit(cache=True)
-def surface_edges(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """``(P, K)``: True where edge i of polygon p is a real surface, False for a seam: an edge
-    whose outside, just beyond its midpoint, lies in another polygon (convex pieces of one
-    solid, such as mitred wall segments or an ear-clipped polygon)."""
-    P, K = verts.shape[0], verts.shape[1]
-    out = np.ones((P, K), dtype=np.bool_)
-    for p in range(P):
-        n = counts[p]
-        for i in range(n):
-            nx, ny, ok = _edge_normal(verts[p], i, n)
-            if not ok:
-                continue
-            j = (i + 1) % n
-            mx = 0.5 * (verts[p, i, 0] + verts[p, j, 0]) + _SEAM_PROBE * nx
-            my = 0.5 * (verts[p, i, 1] + verts[p, j, 1]) + _SEAM_PROBE * ny
-            for q in range(P):
-                if q != p and _contains(verts[q], counts[q], mx, my):
-                    out[p, i] = False
-                    break
-    return out
 
 
 @njit(cache=True)
@@ -156,15 +133,15 @@ def _solid(verts: np.ndarray, counts: np.ndarray, px: float, py: float) -> bool:
 
 
 @njit(cache=True)
-def corner_vertices(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+def corner_vertices(verts: np.ndarray, counts: np.ndarray, surface: np.ndarray) -> np.ndarray:
     """``(P, K)``: False where vertex k of polygon p only joins two pieces along a straight
     surface (a surface edge ends there and the solid continues along its line in another
     piece), True elsewhere. Such a joint is no corner a part can touch; a contact of its own
     would, with the part sliding over it, push along the surface: a ghost that stops a slide.
+    ``surface (P, K)`` marks the real surface edges (:mod:`validity.solid_surface`).
     """
     P, K = verts.shape[0], verts.shape[1]
     out = np.ones((P, K), dtype=np.bool_)
-    surface = surface_edges(verts, counts)
     for p in range(P):
         n = counts[p]
         for k in range(n):
@@ -208,7 +185,7 @@ def find_contacts(
     ``clear`` is a lower bound on the distance to every obstacle that gave no contact (inf when
     there is none), so a caller with no contacts knows how far the part may move before one
     can appear. ``surface (P, K)`` marks the polygons' real surface edges
-    (:func:`surface_edges`), ``corners (P, K)`` their convex corners
+    (:mod:`validity.solid_surface`), ``corners (P, K)`` their contact corners
     (:func:`corner_vertices`). Broad phase: obstacles whose bounding box is ``margin`` or more
     away are bounded by that box gap and not tested further.
     """

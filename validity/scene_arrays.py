@@ -9,14 +9,16 @@ from functools import cached_property
 import numpy as np
 
 from feeders.scene import Scene
-from validity.contact_kernel import corner_vertices, surface_edges
 from validity.geometry_kernel import clearance_at_pose, polygon_aabbs
+from validity.solid_surface import split_at_cover
 
 
 @dataclass(frozen=True)
 class SceneArrays:
     """``body (4, 2)`` part corners in the body frame (centre of mass at the origin);
-    ``verts (P, K, 2)``, ``counts (P,)``, ``aabbs (P, 4)`` static convex polygons;
+    ``verts (P, K, 2)``, ``counts (P,)``, ``aabbs (P, 4)`` static convex polygons, their
+    edges split where another piece starts or stops covering them
+    (:func:`validity.solid_surface.split_at_cover`);
     ``circles (C, 3)`` static discs; ``bounds (4,)`` = x_min, x_max, y_min, y_max of the
     centre of mass; ``surface (P, K)`` True for polygon edges that are real surfaces, False
     for seams between pieces of one solid; ``corners (P, K)`` True for polygon vertices that
@@ -34,19 +36,17 @@ class SceneArrays:
     @classmethod
     def from_scene(cls, scene: Scene) -> SceneArrays:
         verts, counts, circles = scene.obstacles.packed()
-        if verts.shape[0] == 0:  # numba needs a typed, non-ragged array even when empty
-            verts = np.zeros((0, 3, 2))
+        circles = np.ascontiguousarray(circles, dtype=np.float64).reshape(-1, 3)
+        solid = split_at_cover(verts, counts, circles)
         return cls(
             body=np.ascontiguousarray(scene.part.body_vertices(), dtype=np.float64),
-            verts=np.ascontiguousarray(verts, dtype=np.float64),
-            counts=np.ascontiguousarray(counts, dtype=np.int64),
-            aabbs=polygon_aabbs(np.ascontiguousarray(verts), counts),
-            circles=np.ascontiguousarray(circles, dtype=np.float64).reshape(-1, 3),
+            verts=solid.verts,
+            counts=solid.counts,
+            aabbs=polygon_aabbs(solid.verts, solid.counts),
+            circles=circles,
             bounds=np.asarray(scene.bounds, dtype=np.float64),
-            surface=surface_edges(np.ascontiguousarray(verts), np.asarray(counts, dtype=np.int64)),
-            corners=corner_vertices(
-                np.ascontiguousarray(verts), np.asarray(counts, dtype=np.int64)
-            ),
+            surface=solid.surface,
+            corners=solid.corners,
         )
 
     @cached_property

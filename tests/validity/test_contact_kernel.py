@@ -20,13 +20,12 @@ from test_geometry_kernel import _scene
 
 from validity.contact_kernel import (
     MAX_CONTACTS,
-    corner_vertices,
     find_contacts,
     point_polygon_feature,
-    surface_edges,
 )
 from validity.geometry_kernel import polygon_aabbs, pose_vertices
 from validity.scene_arrays import SceneArrays
+from validity.solid_surface import split_at_cover
 
 MARGIN = 0.05
 N_POSES = 3000
@@ -81,29 +80,26 @@ def _contacts(arrays: SceneArrays, world: np.ndarray, margin: float = MARGIN):
 
 def _surface_depths(scene, px: float, py: float) -> list[float]:
     """For each polygon containing p: shapely's distance from p to the nearest line of its
-    edges that are real surfaces (not shared with another piece)."""
+    edges that are real surfaces along some stretch (not covered by other pieces all along)."""
     pieces = [shapely.Polygon(p) for p in scene.obstacles.polygons]
+    discs = [shapely.Point(c[:2]).buffer(c[2], 256) for c in scene.obstacles.circles]
     point = shapely.Point(px, py)
     out = []
     for k, poly in enumerate(scene.obstacles.polygons):
         if not pieces[k].covers(point):
             continue
+        others = shapely.union_all([g for j, g in enumerate(pieces) if j != k] + discs)
         lines = []
         for i in range(len(poly)):
             a, b = poly[i], poly[(i + 1) % len(poly)]
-            beyond = shapely.Point((a + b) / 2 + 1e-7 * _outward(a, b))
-            if any(other.covers(beyond) for j, other in enumerate(pieces) if j != k):
+            beyond = shapely.LineString([a, b]).offset_curve(-1e-7)  # just outside the edge
+            if beyond.difference(others).length < 1e-6:
                 continue  # a seam
             far = 1e3 * (b - a) / np.linalg.norm(b - a)
             lines.append(shapely.LineString([a - far, b + far]).distance(point))
         if lines:
             out.append(min(lines))
     return out
-
-
-def _outward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    e = (b - a) / np.linalg.norm(b - a)
-    return np.array([e[1], -e[0]])
 
 
 def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[str, float]:
@@ -154,16 +150,22 @@ def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(nam
 
 @pytest.mark.parametrize("name", ["table3", "free-form"])
 def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
-    """Completeness: a part corner whose shapely signed distance to the solid (the union of
-    the polygons) is below the margin appears as a contact at that corner: with that gap when
-    outside, with a gap <= 0 when inside (the depth to the piece's own surface)."""
-    _, arrays, polygons, _, worlds = _case(name)
+    """Completeness: a part corner whose shapely signed distance to the polygons is below the
+    margin appears as a contact at that corner: with that gap when outside, with a gap <= 0
+    when inside (the depth to the piece's own surface). Outside, corners nearer a disc than
+    any polygon are the disc's (the disc's contact is at the part's point nearest its centre;
+    a polygon edge inside a disc, such as the pin finger's end, is no surface)."""
+    scene, arrays, polygons, _, worlds = _case(name)
     missing = checked = 0
     for world in worlds:
         rows, _ = _contacts(arrays, world)
         for cx, cy in world:
             d = min(_signed(g, cx, cy) for g in polygons)
-            if d < MARGIN - 1e-9:
+            disc = min(
+                (math.hypot(cx - ox, cy - oy) - r for ox, oy, r in scene.obstacles.circles),
+                default=math.inf,
+            )
+            if d < MARGIN - 1e-9 and (d < 0.0 or d < disc - 1e-9):
                 checked += 1
                 hit = (np.abs(rows[:, 3] - cx) < 1e-12) & (np.abs(rows[:, 4] - cy) < 1e-12)
                 hit &= (np.abs(rows[:, 0] - d) < TOL) if d >= 0 else (rows[:, 0] <= 0)
@@ -196,7 +198,8 @@ def test_a_box_resting_on_a_floor_has_exactly_its_two_bottom_corners() -> None:
     world = np.array([[-1.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 1.0]])
     out = np.empty((MAX_CONTACTS, 5))
     aabbs = polygon_aabbs(verts, counts)
-    surface, corners = surface_edges(verts, counts), corner_vertices(verts, counts)
+    solid = split_at_cover(verts, counts, np.zeros((0, 3)))
+    surface, corners = solid.surface, solid.corners
     nc, _ = find_contacts(
         world, verts, counts, aabbs, np.zeros((0, 3)), surface, corners, 0.01, out
     )
@@ -226,12 +229,13 @@ def test_seams_between_pieces_of_one_solid_are_not_surfaces() -> None:
         ]
     )
     counts = np.array([4, 4])
-    surface = surface_edges(verts, counts)
+    solid = split_at_cover(verts, counts, np.zeros((0, 3)))
+    surface = solid.surface
     assert surface.tolist() == [[True, False, True, True], [True, True, True, False]]
     world = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]) - np.array([0.0, 1e-12])
     out = np.empty((MAX_CONTACTS, 5))
     aabbs = polygon_aabbs(verts, counts)
-    corners = corner_vertices(verts, counts)
+    corners = solid.corners
     assert corners.tolist() == [[True, False, False, True], [False, True, True, False]]
     nc, _ = find_contacts(
         world, verts, counts, aabbs, np.zeros((0, 3)), surface, corners, 0.01, out
