@@ -37,6 +37,11 @@ def _wrap_outside(yaw: np.ndarray) -> np.ndarray:
     return np.where(outside, (yaw + math.pi) % (2.0 * math.pi) - math.pi, yaw)
 
 
+def _rest_steps(rest_speed: float, rest_time: float, h: float) -> int:
+    """Steps of stillness that end a run at rest (0: never ends at rest)."""
+    return math.ceil(rest_time / h) if rest_speed > 0.0 else 0
+
+
 @dataclass(frozen=True)
 class Trajectory:
     """A simulated run: states at ``times`` (rows x, y, theta, vx, vy, omega), per-step
@@ -51,10 +56,19 @@ class Trajectory:
     mass: float
     inertia: float
     gravity: tuple[float, float]
+    rest_steps: int = 0  # length of the still window that ends a run "at_rest" (steps)
 
     @property
     def final(self) -> np.ndarray:
         return self.states[-1]
+
+    @property
+    def settle_index(self) -> int:
+        """Row of Eq. 10's T: where the still window began for a run that ended at rest (the
+        part came to rest then; the window only confirms it), else the last row."""
+        if self.end == "at_rest":
+            return max(len(self.states) - 1 - self.rest_steps, 0)
+        return len(self.states) - 1
 
     @property
     def duration(self) -> float:
@@ -125,7 +139,7 @@ class DynamicLevel(MovingPartLevel):
         out, traj, tele, summary = run_buffers(
             n, record, len(TELEMETRY_COLUMNS), len(SUMMARY_FIELDS)
         )
-        rest_steps = math.ceil(rest_time / h) if rest_speed > 0.0 else 0
+        rest_steps = _rest_steps(rest_speed, rest_time, h)
         steps, reason = simulate_kernel(
             np.asarray(state, dtype=np.float64)[:6].copy(),
             np.asarray(wrench, dtype=np.float64),
@@ -196,4 +210,5 @@ class DynamicLevel(MovingPartLevel):
             mass=self.mass,
             inertia=self.inertia,
             gravity=(float(self.gravity[0]), float(self.gravity[1])),
+            rest_steps=_rest_steps(rest_speed, rest_time, h),
         )

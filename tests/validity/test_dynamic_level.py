@@ -236,6 +236,21 @@ def test_a_seam_in_a_floor_does_not_catch_a_sliding_box() -> None:
     assert runs[0].final[0] > 1.0  # it did cross the seam
 
 
+def test_a_box_dropped_flat_comes_to_rest_when_it_lands_not_after_the_rest_window() -> None:
+    """Eq. 10's T for a drop that ends at rest (issue 11, fault 3). Reference: free fall, a
+    flat box 1.0 above the floor lands at sqrt(2 / g) = 0.4515 s and stops there (no
+    restitution); the 0.2 s still window that ends the run only confirms it."""
+    scene = _floor_scene()
+    level = DynamicLevel(scene)
+    run = level.simulate(
+        (0.0, 1.5, 0.0, 0.0, 0.0, 0.0), duration=5.0, rest_speed=1e-3, rest_time=0.2
+    )
+    assert run.end == "at_rest"
+    assert run.duration == pytest.approx(math.sqrt(2.0 / G) + 0.2, abs=3e-3)
+    assert run.times[run.settle_index] == pytest.approx(math.sqrt(2.0 / G), abs=3e-3)
+    assert run.states[run.settle_index, 1] == pytest.approx(0.5, abs=1e-3)
+
+
 # --- walls whose edges are partly covered by another piece (issue 11, fault 1) --------------
 
 
