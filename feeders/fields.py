@@ -4,6 +4,7 @@ the field and its allowed range, so a user can fix the file without reading our 
 from __future__ import annotations
 
 import math
+import stat
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -73,14 +74,83 @@ def _yaml_problem(exc: yaml.YAMLError) -> str:
     return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
 
 
-def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
-    """The document in the YAML file ``path`` (``yaml.safe_load``); a file that cannot be read
-    or parsed raises ``error`` naming the file (``kind``: what it is, for the message)."""
+MAX_DOCUMENT_BYTES = 1 << 20  # a scene or config is a few kilobytes; 1 MiB is generous
+MAX_DEPTH = 32  # nesting of mappings and lists (a scene needs 4)
+
+
+class _BoundedLoader(yaml.SafeLoader):
+    """``yaml.safe_load``'s loader that refuses aliases (``*name``: a 322-byte "billion laughs"
+    document expands to gigabytes) and nesting deeper than ``MAX_DEPTH`` (Python's recursion
+    limit otherwise ends it in a RecursionError). A scene or config never needs either."""
+
+    def __init__(self, stream: str) -> None:
+        super().__init__(stream)
+        self._depth = 0
+
+    def compose_node(self, parent: Any, index: Any) -> Any:
+        if self.check_event(yaml.AliasEvent):
+            event = self.peek_event()
+            raise yaml.composer.ComposerError(
+                None, None, "aliases (*name) are not allowed", event.start_mark
+            )
+        self._depth += 1
+        try:
+            if self._depth > MAX_DEPTH:
+                raise yaml.composer.ComposerError(
+                    None,
+                    None,
+                    f"nested deeper than {MAX_DEPTH} levels",
+                    self.peek_event().start_mark,
+                )
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+
+
+def _read_text(path: Path, kind: str, error: type[FieldError]) -> str:
+    """The UTF-8 text of a regular file of at most ``MAX_DOCUMENT_BYTES``, without blocking
+    on a FIFO or reading a device forever."""
     try:
-        text = path.read_text()
+        info = path.stat()
     except OSError as exc:
         raise error(f"cannot read {kind} file '{path}': {exc.strerror}") from None
+    if not stat.S_ISREG(info.st_mode):
+        raise error(f"{kind} file '{path}' is not a regular file")
+    if info.st_size > MAX_DOCUMENT_BYTES:
+        raise error(
+            f"{kind} file '{path}' is {info.st_size} bytes; the limit is {MAX_DOCUMENT_BYTES}"
+        )
     try:
-        return yaml.safe_load(text)
+        with path.open("rb") as handle:
+            raw = handle.read(MAX_DOCUMENT_BYTES + 1)
+    except OSError as exc:
+        raise error(f"cannot read {kind} file '{path}': {exc.strerror}") from None
+    if len(raw) > MAX_DOCUMENT_BYTES:
+        raise error(f"{kind} file '{path}' is larger than the limit of {MAX_DOCUMENT_BYTES} bytes")
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise error(
+            f"{kind} file '{path}' is not UTF-8 text (byte {exc.start}: {raw[exc.start]:#04x})"
+        ) from None
+
+
+def parse_yaml(text: str) -> Any:
+    """The YAML document in ``text``: ``yaml.safe_load`` with aliases refused and nesting
+    bounded (:class:`_BoundedLoader`); raises ``yaml.YAMLError``."""
+    loader = _BoundedLoader(text)
+    try:
+        return loader.get_single_data()
+    finally:
+        loader.dispose()
+
+
+def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
+    """The document in the YAML file ``path`` (``yaml.safe_load``, bounded: a regular UTF-8
+    file of at most ``MAX_DOCUMENT_BYTES``, no aliases, at most ``MAX_DEPTH`` levels); a file
+    that cannot be read or parsed raises ``error`` naming the file (``kind``: what it is)."""
+    text = _read_text(Path(path), kind, error)
+    try:
+        return parse_yaml(text)
     except yaml.YAMLError as exc:
         raise error(f"'{path}' is not valid YAML: {_yaml_problem(exc)}") from None

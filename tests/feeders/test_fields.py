@@ -1,0 +1,95 @@
+"""Reading YAML documents (scenes, configs) safely: every malformed file is one clear error,
+found at once (issue 16: alias bombs, deep nesting, non-UTF-8 bytes, FIFOs, devices, huge
+files used to end in MemoryError, RecursionError, UnicodeDecodeError or a hang)."""
+
+from __future__ import annotations
+
+import os
+import threading
+from pathlib import Path
+
+import pytest
+
+from feeders.fields import MAX_DEPTH, MAX_DOCUMENT_BYTES, FieldError, read_yaml
+
+BILLION_LAUGHS = (
+    'a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]\n'
+    "b: &b [*a,*a,*a,*a,*a,*a,*a,*a,*a]\n"
+    "c: &c [*b,*b,*b,*b,*b,*b,*b,*b,*b]\n"
+    "d: &d [*c,*c,*c,*c,*c,*c,*c,*c,*c]\n"
+    "e: &e [*d,*d,*d,*d,*d,*d,*d,*d,*d]\n"
+    "f: &f [*e,*e,*e,*e,*e,*e,*e,*e,*e]\n"
+    "g: &g [*f,*f,*f,*f,*f,*f,*f,*f,*f]\n"
+)
+
+
+def _read(path: Path) -> object:
+    return read_yaml(path, "scene", FieldError)
+
+
+def _error(path: Path) -> str:
+    with pytest.raises(FieldError) as info:
+        _read(path)
+    message = str(info.value)
+    assert "\n" not in message
+    return message
+
+
+def test_a_plain_document_reads_as_yaml_safe_load_would(tmp_path: Path) -> None:
+    path = tmp_path / "ok.yaml"
+    path.write_text("name: box\nbounds: [0, 1, 0, 1]\nnested: {a: [1, {b: 2}]}\n")
+    assert _read(path) == {"name": "box", "bounds": [0, 1, 0, 1], "nested": {"a": [1, {"b": 2}]}}
+
+
+def test_an_alias_bomb_is_refused_at_its_first_alias(tmp_path: Path) -> None:
+    path = tmp_path / "bomb.yaml"
+    path.write_text(BILLION_LAUGHS)
+    assert "aliases" in _error(path) and "line 2" in _error(path)
+
+
+def test_nesting_beyond_the_limit_is_refused_and_within_it_reads(tmp_path: Path) -> None:
+    deep = tmp_path / "deep.yaml"
+    deep.write_text("[" * 1000 + "]" * 1000)
+    assert f"deeper than {MAX_DEPTH}" in _error(deep)
+    fine = tmp_path / "fine.yaml"
+    fine.write_text("[" * MAX_DEPTH + "]" * MAX_DEPTH)
+    assert _read(fine) is not None
+
+
+def test_non_utf8_bytes_name_the_byte(tmp_path: Path) -> None:
+    path = tmp_path / "latin1.yaml"
+    path.write_bytes(b"name: caf\xe9\n")
+    assert "not UTF-8" in _error(path) and "0xe9" in _error(path)
+
+
+def test_a_file_over_the_size_limit_is_refused_without_reading_it(tmp_path: Path) -> None:
+    path = tmp_path / "big.yaml"
+    with path.open("wb") as handle:
+        handle.truncate(MAX_DOCUMENT_BYTES + 1)  # sparse: the check must come from the size
+    assert "limit" in _error(path)
+
+
+def test_a_fifo_nobody_writes_is_refused_at_once(tmp_path: Path) -> None:
+    """Opening a FIFO blocks until a writer comes; the reader must not open it at all. Run in
+    a thread so that a regression fails the test instead of hanging the suite."""
+    path = tmp_path / "pipe.yaml"
+    os.mkfifo(path)
+    result: list[str] = []
+    worker = threading.Thread(target=lambda: result.append(_error(path)), daemon=True)
+    worker.start()
+    worker.join(timeout=10)
+    if worker.is_alive():  # unblock the reader, then fail
+        with open(path, "w"):
+            pass
+        pytest.fail("reading a FIFO blocked")
+    assert "not a regular file" in result[0]
+
+
+@pytest.mark.parametrize("path", ["/dev/zero", "/proc"])
+def test_devices_and_directories_are_not_regular_files(path: str) -> None:
+    assert "not a regular file" in _error(Path(path))
+
+
+def test_a_missing_file_and_an_overlong_name_are_one_line_errors(tmp_path: Path) -> None:
+    assert "No such file" in _error(tmp_path / "missing.yaml")
+    assert "cannot read" in _error(tmp_path / ("x" * 5000 + ".yaml"))
