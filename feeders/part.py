@@ -23,6 +23,10 @@ from dataclasses import dataclass
 import numpy as np
 
 
+LENGTH_RANGE = (1e-3, 100.0)  # length and width of a part (the paper's length units)
+MASS_RANGE = (1e-9, 1e9)
+
+
 class PartError(ValueError):
     """A part value is outside its allowed range."""
 
@@ -52,9 +56,9 @@ class Peg:
     inertia: float = 77.0 / 300.0  # Peg.two_density() defaults
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "length", _check("length", self.length, 1e-3, 100.0))
-        object.__setattr__(self, "width", _check("width", self.width, 1e-3, self.length))
-        object.__setattr__(self, "mass", _check("mass", self.mass, 1e-9, 1e9))
+        object.__setattr__(self, "length", _check("length", self.length, *LENGTH_RANGE))
+        object.__setattr__(self, "width", _check("width", self.width, LENGTH_RANGE[0], self.length))
+        object.__setattr__(self, "mass", _check("mass", self.mass, *MASS_RANGE))
         object.__setattr__(
             self, "com_offset", _check("com_offset", self.com_offset, 0.0, self.length / 2)
         )
@@ -74,6 +78,9 @@ class Peg:
         I = m_i ((L/2)^2 + w^2)/12 about its centre, moved to the centre of mass.
         """
         _check("heavy_fraction", heavy_fraction, 0.5, 1.0)
+        length = _check("length", length, *LENGTH_RANGE)
+        width = _check("width", width, LENGTH_RANGE[0], length)
+        mass = _check("mass", mass, *MASS_RANGE)
         m_h, m_l = heavy_fraction * mass, (1.0 - heavy_fraction) * mass
         offset = (m_h - m_l) / mass * length / 4.0
         half = length / 2.0

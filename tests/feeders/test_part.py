@@ -190,3 +190,18 @@ def test_two_density_rejects_a_heavy_fraction_outside_half_to_one(fraction):
 
 def test_part_error_is_a_value_error():
     assert issubclass(PartError, ValueError)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"mass": 0.0}, "mass"),  # was ZeroDivisionError
+        ({"length": 1e308}, "length"),  # was OverflowError
+        ({"width": -1.0}, "width"),
+        ({"mass": math.nan}, "mass"),
+    ],
+)
+def test_two_density_checks_its_values_before_computing_with_them(kwargs, field):
+    with pytest.raises(PartError) as info:
+        Peg.two_density(**kwargs)
+    assert f"'{field}'" in str(info.value)
