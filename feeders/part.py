@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-
 LENGTH_RANGE = (1e-3, 100.0)  # length and width of a part (the paper's length units)
 MASS_RANGE = (1e-9, 1e9)
 
