@@ -40,7 +40,11 @@ from feeders.fields import (
 )
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
+from feeders.scene_checks import MAX_STARTS, gravity_problem, scene_problems
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
+
+MAX_VERTICES = 1000  # points of one polygon (ear clipping is cubic in them)
+MAX_OBSTACLES = 1000
 
 
 class SceneError(FieldError):
@@ -99,6 +103,8 @@ def _design(spec: Any) -> DesignParameters:
 def _obstacles(spec: Any) -> Obstacles:
     if not isinstance(spec, list) or not spec:
         raise SceneError("obstacles: expected a non-empty list of {polygon: ...} or {circle: ...}")
+    if len(spec) > MAX_OBSTACLES:
+        raise SceneError(f"obstacles: {len(spec)} items; at most {MAX_OBSTACLES} are allowed")
     polygons, circles, labels_p, labels_c = [], [], [], []
     for i, item in enumerate(spec):
         field = f"obstacles[{i}]"
@@ -110,6 +116,10 @@ def _obstacles(spec: Any) -> Obstacles:
             pts = item["polygon"]
             if not isinstance(pts, list):
                 raise SceneError(f"{field}.polygon: expected a list of [x, y] points")
+            if len(pts) > MAX_VERTICES:
+                raise SceneError(
+                    f"{field}.polygon: {len(pts)} points; at most {MAX_VERTICES} are allowed"
+                )
             pts = [numbers_field(p, f"{field}.polygon[{k}]", 2) for k, p in enumerate(pts)]
             try:
                 pieces = convex_pieces(pts, field=f"{field}.polygon")
@@ -148,6 +158,14 @@ def _goal(spec: Any) -> Goal:
     )
 
 
+def _gravity(value: Any, field: str) -> tuple[float, float]:
+    gx, gy = numbers_field(value, field, 2)
+    problem = gravity_problem((gx, gy), field)
+    if problem:
+        raise SceneError(problem)
+    return gx, gy
+
+
 ENVIRONMENT_KEYS = {"part", "friction", "restitution", "gravity", "inputs"}
 
 
@@ -163,9 +181,7 @@ def environment_from_dict(data: dict[str, Any], prefix: str = "") -> dict[str, A
             "restitution": number_field(
                 data.get("restitution", 0.3), f"{prefix}restitution", 0.0, 1.0
             ),
-            "gravity": tuple(
-                numbers_field(data.get("gravity", [0.0, -9.81]), f"{prefix}gravity", 2)
-            ),
+            "gravity": _gravity(data.get("gravity", [0.0, -9.81]), f"{prefix}gravity"),
             "inputs": _inputs(data.get("inputs")),
         }
     except FieldError as exc:
@@ -176,9 +192,14 @@ def environment_from_dict(data: dict[str, Any], prefix: str = "") -> dict[str, A
 
 
 def scene_from_dict(data: Any, name: str = "scene") -> Scene:
-    """Validate a parsed YAML document and build its scene."""
+    """Validate a parsed YAML document and build its scene, physically sane
+    (:func:`feeders.scene_checks.scene_problems`)."""
     with field_errors_as(SceneError):
-        return _scene_from_dict(data, name)
+        scene = _scene_from_dict(data, name)
+    problems = scene_problems(scene)
+    if problems:
+        raise SceneError(problems[0])
+    return scene
 
 
 def _scene_from_dict(data: Any, name: str) -> Scene:
@@ -216,6 +237,8 @@ def _scene_from_dict(data: Any, name: str) -> Scene:
     starts_spec = data["starts"]
     if not isinstance(starts_spec, dict) or not starts_spec:
         raise SceneError("starts: expected a mapping name: [x, y, yaw]")
+    if len(starts_spec) > MAX_STARTS:
+        raise SceneError(f"starts: {len(starts_spec)} poses; at most {MAX_STARTS} are allowed")
     starts = {str(k): tuple(numbers_field(v, f"starts.{k}", 3)) for k, v in starts_spec.items()}
     return Scene(
         name=name,
