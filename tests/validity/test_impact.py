@@ -217,3 +217,37 @@ def test_a_flat_landing_resolved_contact_by_contact_leaves_no_corner_approaching
         if e == 0.0 and mu == 0.0:
             assert vel[1] == pytest.approx(0.0, abs=1e-9)
             assert vel[0] == pytest.approx(0.2, abs=1e-12)
+
+
+# --------------------------------------------------------------------------- simultaneous
+# A uniform 2 x 1 box, mass 1, I = m (2^2 + 1^2) / 12 = 5/12, centre of mass at the origin.
+BOX_M, BOX_I = 1.0, 5.0 / 12.0
+BAND = 1e-4
+
+
+def _resolve(vel, rows, mu, e, mass=BOX_M, inertia=BOX_I, slack=1e-12, max_impacts=32):
+    """resolve_impacts on contact rows (gap, n_x, n_y, p_x, p_y), centre of mass at 0."""
+    contacts = np.zeros((12, 5))
+    contacts[: len(rows)] = rows
+    return resolve_impacts(
+        vel, 0.0, 0.0, contacts, len(rows), BAND, mass, inertia, mu, e, slack, max_impacts
+    )
+
+
+def _face_on_wall(hx: float, hy: float) -> list:
+    """The box's face x = hx flush against a wall on its right (normal (-1, 0) into the box):
+    its two corners (hx, +-hy) touch."""
+    return [(0.0, -1.0, 0.0, hx, hy), (0.0, -1.0, 0.0, hx, -hy)]
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+@pytest.mark.parametrize("half", [(1.0, 0.5), (0.5, 1.0)], ids=["short_face", "long_face"])
+def test_a_face_hitting_a_wall_flat_rebounds_at_minus_e_without_spin(e, half) -> None:
+    """Issue 11, fault 2. The box moving at (1, 0, 0) meets a frictionless wall with a whole
+    face at once (two corners, symmetric about the line of motion through the centre of mass).
+    By symmetry no torque acts: the impact is that of a point mass, v+ = (-e, 0, 0), no spin.
+    (Sequential single-point impacts gave vx = -0.094, spin 0.19 at e = 0 for the short face.)"""
+    vel = np.array([1.0, 0.0, 0.0])
+    count = _resolve(vel, _face_on_wall(*half), 0.0, e)
+    assert count >= 1
+    assert vel == pytest.approx([-e, 0.0, 0.0], abs=1e-12)

@@ -20,7 +20,7 @@ import shapely
 from feeders.design import PRESETS
 from feeders.feeder import WALL_THICKNESS, DegenerateDesign, build_feeder
 from feeders.halton import halton_designs
-from feeders.part import DEFAULT_PEG
+from feeders.part import DEFAULT_PEG, Peg
 from feeders.scene import Goal, InputSet, Scene
 from feeders.shapes import Obstacles
 from validity.kinematic import KinematicLevel
@@ -31,14 +31,14 @@ BODY = DEFAULT_PEG.body_vertices()
 FLOOR = np.array([[-50.0, -1.0], [50.0, -1.0], [50.0, 0.0], [-50.0, 0.0]])
 
 
-def _scene(polygons, circles=None, **physics) -> Scene:
+def _scene(polygons, circles=None, part=DEFAULT_PEG, **physics) -> Scene:
     return Scene(
         name="test",
         obstacles=Obstacles(
             tuple(np.asarray(p, dtype=float) for p in polygons),
             np.zeros((0, 3)) if circles is None else circles,
         ),
-        part=DEFAULT_PEG,
+        part=part,
         bounds=(-40.0, 40.0, -40.0, 40.0),
         starts={"start": (0.0, 5.0, 0.0)},
         goal=Goal(x_min=-1.0, x_max=1.0, y_min=-1.0, y_max=1.0, yaw=0.0, yaw_tol=0.5),
@@ -146,6 +146,30 @@ def test_a_part_pressed_into_a_wall_slides_along_it_slower_than_commanded() -> N
     assert 0.0 < run.final[0] < 2.0
     assert np.all(_overlap(level.scene, run.states) <= AREA_TOL)
     assert run.summary["impacts"] > 0
+
+
+BOX = Peg(length=2.0, width=1.0, mass=1.0, com_offset=0.0, inertia=5.0 / 12.0)  # uniform
+WALL = np.array([[3.0, -20.0], [4.0, -20.0], [4.0, 20.0], [3.0, 20.0]])  # its face: x = 3
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+@pytest.mark.parametrize("yaw", [0.0, math.pi / 2], ids=["short_face", "long_face"])
+def test_a_box_driven_flat_into_a_wall_leaves_at_minus_e_without_spin(e, yaw) -> None:
+    """Issue 11, fault 2, through Eq. 8's stepper: a uniform 2 x 1 box driven at (1, 0, 0)
+    into a frictionless wall with a face parallel to it, 0.004 away, touches after 0.004 s at
+    two corners at once and by symmetry (point-mass impact) leaves at (-e, 0, 0) without spin,
+    moving back for the rest of the 0.01 s step (contact band 1e-9). Sequential single-point
+    impacts spun it (and jammed on the long face at e = 0)."""
+    level = KinematicLevel(_scene([WALL], part=BOX, friction=0.0, restitution=e), contact_band=1e-9)
+    half = 1.0 if yaw == 0.0 else 0.5  # the centre's distance to the face that hits
+    x0 = 3.0 - half - 0.004
+    run = level.run((x0, 0.0, yaw, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), 0.01, record=False)
+    assert run.summary["jams"] == 0  # not stopped by the jam limit
+    out = level.propagate((x0, 0.0, yaw, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), 0.01)
+    assert out == pytest.approx(tuple(run.final), abs=0.0)
+    assert out[3:] == pytest.approx((-e, 0.0, 0.0), abs=1e-12)
+    assert out[0] == pytest.approx(x0 + 0.004 - e * 0.006, abs=2e-9)
+    assert out[1] == pytest.approx(0.0, abs=1e-12) and out[2] == pytest.approx(yaw, abs=1e-12)
 
 
 # --------------------------------------------------------------------------- tunnelling
