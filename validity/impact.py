@@ -12,9 +12,33 @@ when slip stops or reverses), and for a frictionless impact, or one that slips o
 throughout, it equals Poisson's and Newton's: a head-on frictionless impact leaves
 ``u_n+ = -e u_n-``.
 
-Several contacts at once (a flat face landing on a wall) are resolved one impact at a time,
-most approaching first, until no contact approaches (Mirtich's sequential impulses): each
-impact is dissipative, so the whole is. Arrays in, numbers out; compiled with numba.
+Several contacts touching at once (a face landing flat on a wall) are resolved together, by
+Poisson's hypothesis applied to the whole contact set: an impact LCP for compression, then
+restitution as e times the compression impulse. The compression impulse P_c = (p_n, p_f)
+solves the contact LCP of Eq. 7 (:mod:`validity.contact_lcp`) with v* = v- (the velocity
+before the impact), no forces and bias 0, over every touching contact (gap <= band), two
+friction directions per contact (the planar friction cone is exact): it leaves no contact
+approaching, with Coulomb friction. The impulse applied is (1 + e) P_c. Without friction, or
+in a symmetric arrival, this is the point-mass answer: a face striking a wall flat leaves at
+-e times its normal speed with no spin (issue 11; impacts one point at a time spin it). When
+friction sticks in compression the contacts leave with -e times their arrival velocity,
+tangential part included (Poisson's law scales the friction impulse too); when every contact
+slips the same way throughout, the tangential velocity changes by mu (1 + e) times the normal
+change.
+
+Energy: complementarity of the compression LCP gives P_c' W' v_c = -D, v_c = v- + M^-1 W P_c,
+D = sum_i s_i mu p_n,i >= 0 (s_i the sliding speed: frictional dissipation). So
+P_c' W' v- = -D - P_c' A P_c with A = W' M^-1 W (positive semidefinite), and the kinetic
+energy change of the impulse (1 + e) P_c is
+``(1 + e) P_c' W' v- + (1 + e)^2 / 2 P_c' A P_c = -(1 + e) D + (1 + e)(e - 1) / 2 P_c' A P_c``,
+never positive for e in [0, 1] and any mu >= 0. A contact that did not take part (it was
+separating) may approach after the restitution impulse: the loop then solves again over the
+contacts touching, until none approaches, each round dissipative. A single touching contact
+keeps Routh's method with Stronge's coefficient above. If the LCP fails even after
+regularisation it is solved without friction, and failing that the most approaching contact
+alone takes a single-point impact (Mirtich's sequential impulses): both are counted, never
+raised. Arrays in, numbers out; compiled with numba, writing into buffers
+(:func:`impact_workspace`) the caller allocates once.
 """
 
 from __future__ import annotations
@@ -24,9 +48,22 @@ import math
 import numpy as np
 from numba import njit
 
+from validity.contact_lcp import (
+    FAILED,
+    FALLBACK_FRICTIONLESS,
+    apply_lcp_impulse,
+    assemble_lcp,
+    contact_jacobians,
+    lcp_columns,
+    solve_with_fallback,
+)
+
 IMPACT_NONE = 0  # the contact does not approach: no impulse
 IMPACT_DONE = 1  # Routh's integration ended in restitution (or compression, e = 0)
 IMPACT_PLASTIC = 2  # integration did not end within its segments: stopped plastically
+# Entries of the ``stats`` array resolve_impacts accumulates into.
+S_SIMULTANEOUS, S_FRICTIONLESS, S_SEQUENTIAL = range(3)
+STATS_FIELDS = ("simultaneous_impacts", "impact_frictionless_fallbacks", "impact_lcp_failures")
 _MAX_SEGMENTS = 16  # slip, stick and reversal phases: at most a handful happen in one impact
 _ZERO_SLIP = 1e-12  # |u_t| (length/s) below which the contact is rolling, not slipping
 
@@ -157,6 +194,62 @@ def collide(
 
 
 @njit(cache=True)
+def impact_workspace(max_contacts: int) -> tuple:
+    """Buffers of :func:`simultaneous_impact` for up to ``max_contacts`` touching contacts:
+    (rows, W_n, W_t, [W_n | W_f], B, b, z, bias, M^-1 diagonal, v-)."""
+    n = max_contacts
+    return (
+        np.zeros((n, 5)),
+        np.zeros((3, n)),
+        np.zeros((3, n)),
+        np.zeros((3, 3 * n)),
+        np.zeros((4 * n, 4 * n)),
+        np.zeros(4 * n),
+        np.zeros(4 * n),
+        np.zeros(n),
+        np.zeros(3),
+        np.zeros(3),
+    )
+
+
+@njit(cache=True)
+def simultaneous_impact(
+    vel: np.ndarray,
+    cx: float,
+    cy: float,
+    rows: np.ndarray,
+    nt: int,
+    mass: float,
+    inertia: float,
+    mu: float,
+    e: float,
+    work: tuple,
+) -> int:
+    """One impact at the ``nt`` contacts ``rows[:nt]`` (``(gap, n_x, n_y, p_x, p_y)``) at once
+    (see the module docstring): ``vel`` += (1 + e) M^-1 W P_c, P_c the compression LCP's
+    impulse. Returns the LCP's status (LCP_SOLVED, LCP_REGULARISED, FALLBACK_FRICTIONLESS;
+    FAILED leaves ``vel`` unchanged)."""
+    _, wn, wt, cols, B, b, z, bias, minv, vminus = work
+    minv[0], minv[1], minv[2] = 1.0 / mass, 1.0 / mass, 1.0 / inertia
+    vminus[0], vminus[1], vminus[2] = vel[0], vel[1], vel[2]
+    for i in range(nt):
+        bias[i] = 0.0
+    contact_jacobians(rows, nt, cx, cy, wn, wt)
+    frictional = mu > 0.0
+    m = lcp_columns(wn, wt, nt, frictional, cols)
+    size = assemble_lcp(cols, m, nt, frictional, mu, minv, bias, vminus, B, b)
+    status, m, size, _, _, _ = solve_with_fallback(
+        wn, wt, nt, frictional, mu, minv, bias, vminus, cols, m, size, B, b, z
+    )
+    if status == FAILED:
+        return status
+    for i in range(m):
+        z[i] *= 1.0 + e
+    apply_lcp_impulse(cols, m, z, minv, vel)
+    return status
+
+
+@njit(cache=True)
 def resolve_impacts(
     vel: np.ndarray,
     cx: float,
@@ -170,17 +263,26 @@ def resolve_impacts(
     e: float,
     slack: float,
     max_impacts: int,
+    work: tuple,
+    stats: np.ndarray,
 ) -> int:
-    """Sequential impacts at the touching contacts (rows ``(gap, n_x, n_y, p_x, p_y)`` of
+    """Impacts at the touching contacts (rows ``(gap, n_x, n_y, p_x, p_y)`` of
     :func:`validity.contact_kernel.find_contacts` with gap <= ``band``) of a body with centre
-    of mass c: the most approaching one first, until none approaches faster than ``slack``.
-    Returns the number of impacts, or -1 when contacts still approach after ``max_impacts``
-    (a jam: the caller stops the body)."""
+    of mass c, until none approaches faster than ``slack``: one contact touching takes the
+    single-point impact of :func:`collide`, several take :func:`simultaneous_impact` together
+    (on its failure, the most approaching one alone). ``work``: :func:`impact_workspace` for at
+    least ``nc`` contacts. ``stats`` (``STATS_FIELDS``) accumulates the simultaneous impacts
+    and their fallbacks. Returns the number of impacts, or -1 when contacts still approach
+    after ``max_impacts`` (a jam: the caller stops the body)."""
+    touch = work[0]
     for count in range(max_impacts + 1):
-        worst, k = -slack, -1
+        worst, k, nt = -slack, -1, 0
         for i in range(nc):
             if contacts[i, 0] > band:
                 continue
+            for j in range(5):
+                touch[nt, j] = contacts[i, j]
+            nt += 1
             un = contact_velocity(
                 vel, contacts[i, 3] - cx, contacts[i, 4] - cy, contacts[i, 1], contacts[i, 2]
             )
@@ -190,6 +292,14 @@ def resolve_impacts(
             return count
         if count == max_impacts:
             break
+        if nt > 1:
+            status = simultaneous_impact(vel, cx, cy, touch, nt, mass, inertia, mu, e, work)
+            stats[S_SIMULTANEOUS] += 1
+            if status == FALLBACK_FRICTIONLESS:
+                stats[S_FRICTIONLESS] += 1
+            if status != FAILED:
+                continue
+            stats[S_SEQUENTIAL] += 1
         collide(
             vel,
             contacts[k, 3] - cx,

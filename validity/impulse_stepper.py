@@ -4,7 +4,9 @@ Every step of length h starts with the velocity the input commands, ``v = u`` (E
 ``v^{l+1} = W(q^l) u^{l+1}``, W the identity in free space), and moves the pose by
 ``q <- q + t v``. When the motion would bring the part into an obstacle, the step advances to
 the time of impact, applies the impact law of :mod:`validity.impact`
-(``v <- v + M^-1 Imp``) and continues with the new velocity for the rest of the step.
+(``v <- v + M^-1 Imp``: Routh's single-point impact at one touching contact, the impact LCP
+over all of them when several touch at once) and continues with the new velocity for the
+rest of the step.
 
 Time of impact: conservative advancement (Mirtich). For a convex part moving with velocity
 ``(v, omega)`` against a convex obstacle, each contact candidate of
@@ -26,10 +28,20 @@ from numba import njit
 
 from validity.contact_kernel import MAX_CONTACTS, find_contacts
 from validity.geometry_kernel import penetrates, pose_vertices
-from validity.impact import resolve_impacts
+from validity.impact import STATS_FIELDS, impact_workspace, resolve_impacts
 
 TELEMETRY_COLUMNS = ("impacts", "sub_steps", "jammed", "stalled", "halvings")
-SUMMARY_FIELDS = ("steps", "impacts", "sub_steps", "jams", "stalls", "halvings", "contact_steps")
+SUMMARY_FIELDS = (
+    "steps",
+    "impacts",
+    "sub_steps",
+    "jams",
+    "stalls",
+    "halvings",
+    "contact_steps",
+    *STATS_FIELDS,  # simultaneous impacts, and their LCP's fallbacks (see validity.impact)
+)
+_S_STATS = SUMMARY_FIELDS.index(STATS_FIELDS[0])
 END_REASONS = ("duration", "left_bounds")
 
 _MAX_SUB_STEPS = 64  # advances within one step (time of impact, impacts, slides)
@@ -111,6 +123,8 @@ def kinematic_kernel(
     world = np.empty_like(body)
     probe = np.empty_like(body)
     contacts = np.zeros((MAX_CONTACTS, 5))
+    work = impact_workspace(MAX_CONTACTS)
+    stats = np.zeros(len(STATS_FIELDS))
     vel = np.empty(3)
     if record:
         traj[0, :3] = x, y, yaw
@@ -138,7 +152,7 @@ def kinematic_kernel(
                 if contacts[i, 0] <= band:
                     touched = 1
             n_imp = resolve_impacts(
-                vel, x, y, contacts, nc, band, mass, inertia, mu, e, 1e-12, max_impacts
+                vel, x, y, contacts, nc, band, mass, inertia, mu, e, 1e-12, max_impacts, work, stats
             )
             if n_imp < 0:
                 vel[:] = 0.0
@@ -180,6 +194,8 @@ def kinematic_kernel(
         summary[5] += halvings
         summary[6] += touched
     summary[0] += steps
+    for i in range(stats.shape[0]):
+        summary[_S_STATS + i] += stats[i]
     out_state[0], out_state[1], out_state[2] = x, y, yaw
     out_state[3:] = vel_out
     return steps, reason

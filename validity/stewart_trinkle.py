@@ -34,8 +34,17 @@ import numpy as np
 from numba import njit
 
 from validity.contact_kernel import MAX_CONTACTS, find_contacts
+from validity.contact_lcp import (
+    FAILED,
+    FALLBACK_FRICTIONLESS,
+    apply_lcp_impulse,
+    assemble_lcp,
+    contact_jacobians,
+    lcp_columns,
+    solve_with_fallback,
+)
 from validity.geometry_kernel import pose_vertices
-from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_from_basis, solve_lcp
+from validity.lcp import LCP_REGULARISED, solve_from_basis
 
 # Per-step telemetry columns.
 T_CONTACTS, T_STATUS, T_PIVOTS, T_ALPHA, T_RESIDUAL, T_PENETRATION, T_SIZE = range(7)
@@ -50,8 +59,8 @@ TELEMETRY_COLUMNS = (
 )
 NO_LCP = -1  # T_STATUS of a step without contacts
 WARM = 9  # T_STATUS: the previous step's basis, verified, solved the LCP without pivoting
-FALLBACK_FRICTIONLESS = 10  # T_STATUS: the friction LCP failed, the frictionless one held
-FAILED = 11  # T_STATUS: no LCP could be solved; the step took no contact impulse
+# T_STATUS also takes validity.contact_lcp's FALLBACK_FRICTIONLESS (the friction LCP failed,
+# the frictionless one held) and FAILED (no LCP could be solved; no contact impulse).
 
 # Summary entries.
 (
@@ -94,66 +103,6 @@ def _radius(body: np.ndarray) -> float:
     for i in range(body.shape[0]):
         r = max(r, math.hypot(body[i, 0], body[i, 1]))
     return r
-
-
-@njit(cache=True)
-def _jacobians(contacts: np.ndarray, nc: int, x: float, y: float, wn: np.ndarray, wt: np.ndarray):
-    """Columns W_n (3, nc) and the tangent columns W_t (3, nc); W_f is (+W_t, -W_t)."""
-    for i in range(nc):
-        nx, ny = contacts[i, 1], contacts[i, 2]
-        rx, ry = contacts[i, 3] - x, contacts[i, 4] - y
-        tx, ty = -ny, nx
-        wn[0, i], wn[1, i], wn[2, i] = nx, ny, rx * ny - ry * nx
-        wt[0, i], wt[1, i], wt[2, i] = tx, ty, rx * ty - ry * tx
-
-
-@njit(cache=True)
-def _columns(wn, wt, nc, frictional, cols) -> int:
-    """[W_n | W_f] into ``cols (3, 3 MAX_CONTACTS)``, W_f = (+t_i, -t_i) per contact; W_n
-    alone when frictionless. Returns the number of columns m."""
-    for i in range(nc):
-        for k in range(3):
-            cols[k, i] = wn[k, i]
-            if frictional:
-                cols[k, nc + 2 * i] = wt[k, i]
-                cols[k, nc + 2 * i + 1] = -wt[k, i]
-    return 3 * nc if frictional else nc
-
-
-@njit(cache=True)
-def _contact_lcp(cols, m, nc, frictional, mu, minv, bias, vstar, B, b) -> int:
-    """B and b of Eq. 7 (size 4 n_c, unknowns p_n, p_f, s), or of the frictionless problem
-    (size n_c, unknowns p_n) when ``frictional`` is False. Returns the size."""
-    n = 4 * nc if frictional else nc
-    for i in range(n):
-        b[i] = 0.0
-        for j in range(n):
-            B[i, j] = 0.0
-    for i in range(m):
-        b[i] = cols[0, i] * vstar[0] + cols[1, i] * vstar[1] + cols[2, i] * vstar[2]
-        for j in range(m):
-            B[i, j] = (
-                cols[0, i] * minv[0] * cols[0, j]
-                + cols[1, i] * minv[1] * cols[1, j]
-                + cols[2, i] * minv[2] * cols[2, j]
-            )
-    for i in range(nc):
-        b[i] += bias[i]
-        if frictional:
-            for s in range(2):
-                B[nc + 2 * i + s, m + i] = 1.0  # E
-                B[m + i, nc + 2 * i + s] = -1.0  # -E'
-            B[m + i, i] = mu  # U
-    return n
-
-
-@njit(cache=True)
-def _apply_impulse(cols, m, z, minv, v) -> None:
-    """v += M^-1 [W_n | W_f] (p_n, p_f)."""
-    for i in range(m):
-        v[0] += minv[0] * cols[0, i] * z[i]
-        v[1] += minv[1] * cols[1, i] * z[i]
-        v[2] += minv[2] * cols[2, i] * z[i]
 
 
 @njit(cache=True)
@@ -271,14 +220,14 @@ def simulate_kernel(
                     )
             else:
                 summary[S_CONTACT_STEPS] += 1
-                _jacobians(contacts, nc, x, y, wn, wt)
+                contact_jacobians(contacts, nc, x, y, wn, wt)
                 for i in range(nc):
                     depth = max(depth, -contacts[i, 0])
                     bias[i] = max(contacts[i, 0] / h, -push_cap)
                 v[0], v[1], v[2] = vstar[0], vstar[1], vstar[2]
                 frictional = mu > 0.0
-                m = _columns(wn, wt, nc, frictional, cols)
-                size = _contact_lcp(cols, m, nc, frictional, mu, minv, bias, vstar, B, b)
+                m = lcp_columns(wn, wt, nc, frictional, cols)
+                size = assemble_lcp(cols, m, nc, frictional, mu, minv, bias, vstar, B, b)
                 summary[S_LCPS] += 1
                 warm = False
                 if warm_start and size == basic_size:
@@ -288,16 +237,9 @@ def simulate_kernel(
                     status = WARM
                     summary[S_WARM] += 1
                 else:
-                    status, pivots, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
-                solved = status == LCP_SOLVED or status == LCP_REGULARISED or status == WARM
-                if not solved and frictional:
-                    m = _columns(wn, wt, nc, False, cols)
-                    size = _contact_lcp(cols, m, nc, False, mu, minv, bias, vstar, B, b)
-                    st2, pv2, reg, residual = solve_lcp(B[:size, :size], b[:size], z[:size])
-                    pivots += pv2
-                    status = FALLBACK_FRICTIONLESS if st2 <= LCP_REGULARISED else FAILED
-                elif not solved:
-                    status = FAILED
+                    status, m, size, pivots, reg, residual = solve_with_fallback(
+                        wn, wt, nc, frictional, mu, minv, bias, vstar, cols, m, size, B, b, z
+                    )
                 if status == FAILED:
                     summary[S_FAILURES] += 1
                     basic_size = -1
@@ -309,7 +251,7 @@ def simulate_kernel(
                         summary[S_FALLBACKS] += 1
                     elif status == LCP_REGULARISED:
                         summary[S_REGULARISED] += 1
-                    _apply_impulse(cols, m, z, minv, v)
+                    apply_lcp_impulse(cols, m, z, minv, v)
                 vx, vy, om = v[0], v[1], v[2]
                 summary[S_MAX_PIVOTS] = max(summary[S_MAX_PIVOTS], pivots)
                 summary[S_MAX_ALPHA] = max(summary[S_MAX_ALPHA], reg)

@@ -17,15 +17,19 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from validity.contact_lcp import assemble_lcp, contact_jacobians, lcp_columns
 from validity.impact import (
     IMPACT_DONE,
     IMPACT_NONE,
+    STATS_FIELDS,
     collide,
     contact_inverse_inertia,
     contact_velocity,
+    impact_workspace,
     planar_impact,
     resolve_impacts,
 )
+from validity.lcp import LCP_SOLVED, solve_lcp
 
 M, INERTIA = 1.0, 77.0 / 300.0  # the default peg's mass and moment of inertia
 
@@ -198,10 +202,10 @@ def test_an_impact_conserves_what_it_must_and_never_gains_energy(case) -> None:
     assert _energy(vel, M, inertia) <= _energy(before, M, inertia) + 1e-9
 
 
-def test_a_flat_landing_resolved_contact_by_contact_leaves_no_corner_approaching() -> None:
-    """The peg landing flat on a floor touches at two corners at once. Sequential impacts
-    leave neither corner approaching, add no energy, and (frictionless, plastic) remove all
-    downward momentum without making the peg spin up more than the first impact does."""
+def test_a_flat_landing_leaves_no_corner_approaching() -> None:
+    """The peg landing flat on a floor touches at two corners at once. The impact leaves
+    neither corner approaching, adds no energy, and (frictionless, plastic) removes all
+    downward momentum without changing the horizontal velocity."""
     body = np.array([[-1.0, -0.5], [1.0, -0.5]])  # the two lower corners, centre at origin
     contacts = np.zeros((12, 5))
     for i, (bx, by) in enumerate(body):
@@ -209,7 +213,23 @@ def test_a_flat_landing_resolved_contact_by_contact_leaves_no_corner_approaching
     for mu, e in [(0.0, 0.0), (0.3, 0.0), (0.3, 0.5), (1.0, 1.0)]:
         vel = np.array([0.2, -1.0, 0.0])
         before = _energy(vel)
-        count = resolve_impacts(vel, 0.0, 0.0, contacts, 2, 1e-4, M, INERTIA, mu, e, 1e-12, 64)
+        stats = np.zeros(len(STATS_FIELDS))
+        count = resolve_impacts(
+            vel,
+            0.0,
+            0.0,
+            contacts,
+            2,
+            1e-4,
+            M,
+            INERTIA,
+            mu,
+            e,
+            1e-12,
+            64,
+            impact_workspace(12),
+            stats,
+        )
         assert count >= 1
         for bx, by in body:
             assert contact_velocity(vel, bx, by, 0.0, 1.0) >= -1e-12
@@ -229,9 +249,25 @@ def _resolve(vel, rows, mu, e, mass=BOX_M, inertia=BOX_I, slack=1e-12, max_impac
     """resolve_impacts on contact rows (gap, n_x, n_y, p_x, p_y), centre of mass at 0."""
     contacts = np.zeros((12, 5))
     contacts[: len(rows)] = rows
-    return resolve_impacts(
-        vel, 0.0, 0.0, contacts, len(rows), BAND, mass, inertia, mu, e, slack, max_impacts
+    stats = np.zeros(len(STATS_FIELDS))
+    count = resolve_impacts(
+        vel,
+        0.0,
+        0.0,
+        contacts,
+        len(rows),
+        BAND,
+        mass,
+        inertia,
+        mu,
+        e,
+        slack,
+        max_impacts,
+        impact_workspace(12),
+        stats,
     )
+    assert stats[1] == 0 and stats[2] == 0  # no LCP fallback in these cases
+    return count
 
 
 def _face_on_wall(hx: float, hy: float) -> list:
@@ -251,3 +287,151 @@ def test_a_face_hitting_a_wall_flat_rebounds_at_minus_e_without_spin(e, half) ->
     count = _resolve(vel, _face_on_wall(*half), 0.0, e)
     assert count >= 1
     assert vel == pytest.approx([-e, 0.0, 0.0], abs=1e-12)
+
+
+def test_the_impact_lcp_of_the_flat_box_is_the_hand_worked_one() -> None:
+    """The frictionless compression LCP of the short face on the wall, assembled by the shared
+    contact-LCP module: W_n columns (n, r x n) = (-1, 0, +-0.5), so
+    A = W_n' M^-1 W_n = 1 + (+-0.5)(+-0.5) / I = [[1.6, 0.4], [0.4, 1.6]] (I = 5/12), and
+    b = W_n' v- = (-1, -1) for v- = (1, 0, 0); its solution p_c = A^-1 (1, 1) = (0.5, 0.5)."""
+    rows = np.array(_face_on_wall(1.0, 0.5))
+    wn, wt, cols = np.zeros((3, 2)), np.zeros((3, 2)), np.zeros((3, 6))
+    B, b, z = np.zeros((8, 8)), np.zeros(8), np.zeros(8)
+    minv = np.array([1.0, 1.0, 12.0 / 5.0])
+    contact_jacobians(rows, 2, 0.0, 0.0, wn, wt)
+    m = lcp_columns(wn, wt, 2, False, cols)
+    size = assemble_lcp(cols, m, 2, False, 0.0, minv, np.zeros(2), np.array([1.0, 0, 0]), B, b)
+    assert (m, size) == (2, 2)
+    assert B[:2, :2] == pytest.approx(np.array([[1.6, 0.4], [0.4, 1.6]]), abs=1e-15)
+    assert b[:2] == pytest.approx([-1.0, -1.0], abs=0.0)
+    status, _, _, _ = solve_lcp(B[:2, :2], b[:2], z[:2])
+    assert status == LCP_SOLVED and z[:2] == pytest.approx([0.5, 0.5], abs=1e-12)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+def test_a_flat_face_arriving_obliquely_sticks_when_mu_is_large(e: float) -> None:
+    """Short face on the wall, v- = (1, 0.3, 0), mu = 1. Compression can stop both corners
+    entirely: the tangential impulse needed, 0.3 m, is within mu times the normal one, 1 m,
+    and the torque balance 0.5 (p_1 - p_2) = 1 * 0.3 keeps both normal impulses positive
+    (0.8 and 0.2). So v_c = 0 and Poisson's law returns v+ = -e v- = (-e, -0.3 e, 0): no spin;
+    at e = 0 the box stops dead (no tangential velocity)."""
+    vel = np.array([1.0, 0.3, 0.0])
+    _resolve(vel, _face_on_wall(1.0, 0.5), 1.0, e)
+    assert vel == pytest.approx([-e, -0.3 * e, 0.0], abs=1e-12)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+def test_a_flat_face_arriving_obliquely_slips_when_mu_is_small(e: float) -> None:
+    """Short face on the wall, v- = (1, 0.3, 0), mu = 0.1: friction cannot stop the slip
+    (mu (1 + e) * 1 <= 0.2 < 0.3), both corners slip up the wall and stay pressed (torque
+    balance 0.5 (p_1 - p_2) = 0.1 (1 + e) keeps both positive). Hand-worked: v_x+ = -e, the
+    tangential change is mu (1 + e) times the normal change (1 + e): v_y+ = 0.3 - 0.1 (1 + e);
+    no spin."""
+    vel = np.array([1.0, 0.3, 0.0])
+    _resolve(vel, _face_on_wall(1.0, 0.5), 0.1, e)
+    assert vel == pytest.approx([-e, 0.3 - 0.1 * (1.0 + e), 0.0], abs=1e-12)
+
+
+FLOOR_ROWS = [(0.0, 0.0, 1.0, -1.0, -0.5), (0.0, 0.0, 1.0, 1.0, -0.5)]  # long face on a floor
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+@pytest.mark.parametrize(
+    "mu,expected_vx",
+    [(0.0, lambda e: 0.4), (0.2, lambda e: 0.4 - 0.2 * (1 + e)), (1.0, lambda e: -0.4 * e)],
+    ids=["frictionless", "slips", "sticks"],
+)
+def test_a_box_landing_flat_on_a_floor(e, mu, expected_vx) -> None:
+    """The box lands on its long face at v- = (0.4, -1, 0): both lower corners touch. Hand-
+    worked (both corners stay pressed: the friction torque, arm 0.5, is balanced by normal
+    impulses with arms +-1): v_y+ = e, no spin; v_x+ = 0.4 frictionless, 0.4 - mu (1 + e)
+    when it slips (mu = 0.2), -e 0.4 when friction (mu = 1 >= 0.4) stops the slip in
+    compression (Poisson's law then reverses the tangential velocity too)."""
+    vel = np.array([0.4, -1.0, 0.0])
+    _resolve(vel, FLOOR_ROWS, mu, e)
+    assert vel == pytest.approx([expected_vx(e), e, 0.0], abs=1e-12)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+@pytest.mark.parametrize("mu", [0.0, 0.5])
+def test_three_contacts_a_corner_in_a_wedge_and_a_corner_on_the_floor(e, mu) -> None:
+    """The box lying on its long face with its lower right corner (1, -0.5) in the right-angled
+    wedge of the floor and a wall on its right: three contacts (the floor at both lower
+    corners, the wall at one), v- = (1, -1, 0) into the wedge. Compression stops all three
+    (v_y + omega r_x = 0 at r_x = +-1 and v_x - omega r_y = 0), with normal impulses
+    wall 1, floor 0.25 and 0.75 (torque balance -0.5 * 1 - p_1 + p_2 = 0), all positive, so no
+    friction is needed: v+ = -e v- = (-e, e, 0) with or without friction."""
+    rows = [*FLOOR_ROWS, (0.0, -1.0, 0.0, 1.0, -0.5)]
+    vel = np.array([1.0, -1.0, 0.0])
+    _resolve(vel, rows, mu, e)
+    assert vel == pytest.approx([-e, e, 0.0], abs=1e-12)
+
+
+def test_a_contact_that_approaches_after_restitution_is_resolved_again() -> None:
+    """Rows: the two lower corners on the floor and a wall touching the left upper corner
+    (normal (1, 0)), box moving down and spinning: after the first round (the wall contact
+    separating, no impulse there) the restitution may drive a contact in; whatever the rounds,
+    at the end no touching contact approaches and the energy has not risen."""
+    rows = [*FLOOR_ROWS, (0.0, 1.0, 0.0, -1.0, 0.5)]
+    for mu, e in [(0.0, 1.0), (0.5, 1.0), (0.3, 0.5)]:
+        vel = np.array([0.2, -1.0, 2.0])
+        before = _energy(vel, BOX_M, BOX_I)
+        count = _resolve(vel, rows, mu, e)
+        assert count >= 1
+        for _, nx, ny, px, py in rows:
+            assert contact_velocity(vel, px, py, nx, ny) >= -1e-9
+        assert _energy(vel, BOX_M, BOX_I) <= before + 1e-12
+
+
+def test_one_touching_contact_keeps_the_single_point_law() -> None:
+    """With one contact touching (the other row 0.1 away) resolve_impacts applies exactly
+    :func:`collide` (Routh's method, Stronge's e), not the impact LCP."""
+    rows = [FLOOR_ROWS[0], (0.1, 0.0, 1.0, 1.0, -0.5)]
+    vel = np.array([0.4, -1.0, 0.7])
+    ref = vel.copy()
+    collide(ref, -1.0, -0.5, 0.0, 1.0, BOX_M, BOX_I, 0.3, 0.6)
+    contacts = np.zeros((12, 5))
+    contacts[:2] = rows
+    stats = np.zeros(len(STATS_FIELDS))
+    n = resolve_impacts(
+        vel, 0.0, 0.0, contacts, 2, BAND, BOX_M, BOX_I, 0.3, 0.6, 1e-12, 32,
+        impact_workspace(12), stats,
+    )  # fmt: skip
+    assert n == 1 and stats[0] == 0
+    assert vel == pytest.approx(ref, abs=0.0)
+
+
+contact_sets = st.tuples(
+    st.floats(0.1, 2.0),  # half length
+    st.floats(0.05, 1.0),  # half width
+    st.floats(0.1, 10.0),  # mass
+    st.floats(0.2, 5.0),  # inertia factor (times a uniform box's)
+    st.lists(  # contacts: normal angle, point as fractions of the half sizes
+        st.tuples(st.floats(0.0, 2 * math.pi), st.floats(-1, 1), st.floats(-1, 1)),
+        min_size=2,
+        max_size=5,
+    ),
+    st.tuples(st.floats(-3, 3), st.floats(-3, 3), st.floats(-5, 5)),  # v-
+    st.floats(0.0, 2.0),  # mu
+    st.floats(0.0, 1.0),  # e
+)
+
+
+@settings(max_examples=400, deadline=None)
+@given(contact_sets)
+def test_simultaneous_impacts_never_gain_energy(case) -> None:
+    """For random boxes (mass, inertia), 2 to 5 touching contacts with random normals and
+    points, random velocities, mu in [0, 2], e in [0, 1]: the kinetic energy never rises (the
+    energy bound of the module docstring, -(1 + e) D + (1 + e)(e - 1) / 2 P'AP <= 0 per
+    round), and unless the jam limit stopped it, no contact approaches afterwards."""
+    hx, hy, mass, factor, contacts, v, mu, e = case
+    inertia = factor * mass * (hx * hx + hy * hy) / 3.0
+    rows = [(0.0, math.cos(a), math.sin(a), fx * hx, fy * hy) for a, fx, fy in contacts]
+    vel = np.array(v)
+    before = _energy(vel, mass, inertia)
+    count = _resolve(vel, rows, mu, e, mass=mass, inertia=inertia, max_impacts=64)
+    assert np.all(np.isfinite(vel))
+    assert _energy(vel, mass, inertia) <= before * (1.0 + 1e-9) + 1e-12
+    if count >= 0:
+        for _, nx, ny, px, py in rows:
+            assert contact_velocity(vel, px, py, nx, ny) >= -1e-9 * (1.0 + np.abs(v).sum())

@@ -165,11 +165,31 @@ def test_a_box_driven_flat_into_a_wall_leaves_at_minus_e_without_spin(e, yaw) ->
     x0 = 3.0 - half - 0.004
     run = level.run((x0, 0.0, yaw, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), 0.01, record=False)
     assert run.summary["jams"] == 0  # not stopped by the jam limit
+    assert run.summary["simultaneous_impacts"] >= 1  # both corners resolved together
+    assert run.summary["impact_frictionless_fallbacks"] == 0
+    assert run.summary["impact_lcp_failures"] == 0
     out = level.propagate((x0, 0.0, yaw, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), 0.01)
     assert out == pytest.approx(tuple(run.final), abs=0.0)
     assert out[3:] == pytest.approx((-e, 0.0, 0.0), abs=1e-12)
     assert out[0] == pytest.approx(x0 + 0.004 - e * 0.006, abs=2e-9)
     assert out[1] == pytest.approx(0.0, abs=1e-12) and out[2] == pytest.approx(yaw, abs=1e-12)
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+def test_a_box_driven_flat_onto_a_floor_slips_and_bounces_without_spin(e: float) -> None:
+    """The uniform box, long face down 0.004 above a floor with mu = 0.2, driven at
+    (0.4, -1, 0): both lower corners land at once after 0.004 s. Hand-worked (both corners
+    stay pressed, the slip never stops: mu (1 + e) <= 0.4): v+ = (0.4 - mu (1 + e), e, 0), then
+    it moves with v+ for the remaining 0.006 s."""
+    level = KinematicLevel(
+        _scene([FLOOR], part=BOX, friction=0.2, restitution=e), contact_band=1e-9
+    )
+    out = level.propagate((0.0, 0.504, 0.0, 0.0, 0.0, 0.0), (0.4, -1.0, 0.0), 0.01)
+    vx = 0.4 - 0.2 * (1.0 + e)
+    assert out[3:] == pytest.approx((vx, e, 0.0), abs=1e-12)
+    assert out[0] == pytest.approx(0.4 * 0.004 + vx * 0.006, abs=2e-9)
+    assert out[1] == pytest.approx(0.5 + e * 0.006, abs=2e-9)
+    assert out[2] == pytest.approx(0.0, abs=1e-12)
 
 
 # --------------------------------------------------------------------------- tunnelling
