@@ -1,0 +1,84 @@
+"""The bounds a stress case is held to, each a named constant with its reason, and the verdict.
+
+Hard bounds fail the run (exit status 1): an uncaught exception, a NaN or inf in a state,
+penetration deeper than allowed, energy gained without input beyond what the model may add,
+and a contact level's part ending on the far side of a wall. Soft ones are counted and shown
+(they are how the levels report trouble they handle): LCP failures and frictionless fallbacks
+of the dynamic level, jams and stalls of the kinematic level, and a push-out faster than the
+cap.
+"""
+
+from __future__ import annotations
+
+HARD = ("exception", "nonfinite", "penetration", "energy", "crossing")
+SOFT = ("push_out", "lcp_failure", "fallback", "jam", "stall")
+
+EXACT_PENETRATION = 1e-9
+"""Geometric and kinematic levels (length): they promise psi_n >= 0 exactly (Eq. 9 checks every
+pose, Eq. 8 advances conservatively), so only round-off may show; shapely's distances on
+coordinates of size 10 are good to ~1e-14, so 1e-9 leaves five orders of slack and is far
+below anything physical."""
+
+DYNAMIC_PENETRATION = 0.01
+"""Dynamic level (length): validity.dynamic.PENETRATION_TOLERANCE, the deepest overlap a valid
+dynamic state may have (what a planner accepts); a part started deeper (it never is here) may
+keep its start depth."""
+
+KINEMATIC_ENERGY_REL = 1e-9
+"""Kinematic level: every step starts at the commanded velocity u, and an impact never adds
+kinetic energy (Stronge's restitution), so after a step T <= T(u); relative slack 1e-9 for
+round-off over at most MAX_IMPACTS = 32 closed-form impacts (each good to ~1e-15)."""
+
+DYNAMIC_ENERGY_REL = 1e-6
+"""Dynamic level: with the wrench's work subtracted, Eq. 7 stepped semi-implicitly loses
+energy in free flight (m |g|^2 h^2 / 2 per step) and at every contact (no restitution,
+Coulomb friction); its one source is the psi/h push-out of an overlap, allowed for separately
+(at most the push-out cap's kinetic energy and the lift out of the deepest overlap, see
+:func:`dynamic_energy_allowance`). 1e-6 of the case's energy scale covers the LCP's residual
+and its regularised retries."""
+
+PUSH_OUT_SLACK = 1e-9
+"""Dynamic level (length/s): a part started overlapping leaves, per step, no faster than the
+push-out cap plus what gravity and the wrench add in that step; slack for round-off."""
+
+
+def penetration_allowance(level: str, start_depth: float) -> float:
+    """Deepest overlap (length) a run of ``level`` may reach from a start ``start_depth`` deep."""
+    if level == "dynamic":
+        return max(start_depth, DYNAMIC_PENETRATION) + EXACT_PENETRATION
+    return max(start_depth, 0.0) + EXACT_PENETRATION
+
+
+def dynamic_energy_allowance(
+    mass: float, gravity: float, push_cap: float, deepest: float, scale: float
+) -> float:
+    """Energy (mass length^2/s^2) the psi/h push-out may add: the cap's kinetic energy
+    m cap^2 / 2, the lift m |g| d out of the deepest overlap d, and DYNAMIC_ENERGY_REL of the
+    case's energy ``scale``."""
+    return 0.5 * mass * push_cap**2 + mass * gravity * deepest + DYNAMIC_ENERGY_REL * scale
+
+
+def broken(record: dict) -> tuple[list[str], list[str]]:
+    """``(hard, soft)``: the kinds of bound a case's record breaks."""
+    hard, soft = [], []
+    if record["error"]:
+        hard.append("exception")
+    if record["nonfinite"]:
+        hard.append("nonfinite")
+    if record["max_depth"] > record["depth_allowed"]:
+        hard.append("penetration")
+    if record["energy_gain"] > record["energy_allowed"]:
+        hard.append("energy")
+    if record["crossed_step"] is not None:
+        hard.append("crossing")
+    if record["push_out"] > record["push_out_allowed"]:
+        soft.append("push_out")
+    for kind, key in (
+        ("lcp_failure", "lcp_failures"),
+        ("fallback", "fallbacks"),
+        ("jam", "jams"),
+        ("stall", "stalls"),
+    ):
+        if record[key] > 0:
+            soft.append(kind)
+    return hard, soft

@@ -1,0 +1,107 @@
+"""``partfeeder stress``: the numerical stress suite of the levels (issue 11).
+
+Arguments only at import time (``--help`` stays fast); numba, shapely and the levels are
+imported when the command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from experiments.stress.case import LEVEL_NAMES
+
+MAX_CASES = 10_000_000
+MAX_WORKERS = 256
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options of ``partfeeder stress``."""
+    parser.add_argument("--seed", type=int, default=0, help="seed of the cases (default 0)")
+    parser.add_argument("--cases", type=int, default=300, help="number of cases (default 300)")
+    parser.add_argument(
+        "--levels",
+        default=",".join(LEVEL_NAMES),
+        help="comma-separated levels, dealt in turn (default geometric,kinematic,dynamic)",
+    )
+    parser.add_argument("--workers", type=int, default=1, help="worker processes (default 1)")
+    parser.add_argument(
+        "--out", type=Path, default=None, help="directory for the failing cases' YAML files"
+    )
+    parser.add_argument("--replay", type=Path, default=None, help="run one case file again")
+    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+
+def _levels(text: str) -> tuple[str, ...]:
+    levels = tuple(name.strip() for name in text.split(",") if name.strip())
+    bad = [name for name in levels if name not in LEVEL_NAMES]
+    if not levels or bad:
+        raise ValueError(
+            f"--levels = {text!r}: expected a comma-separated subset of {', '.join(LEVEL_NAMES)}"
+        )
+    return levels
+
+
+def _check(args: argparse.Namespace) -> tuple[str, ...]:
+    if not 1 <= args.cases <= MAX_CASES:
+        raise ValueError(f"--cases = {args.cases} is outside the allowed range [1, {MAX_CASES}]")
+    if not 1 <= args.workers <= MAX_WORKERS:
+        raise ValueError(
+            f"--workers = {args.workers} is outside the allowed range [1, {MAX_WORKERS}]"
+        )
+    if args.seed < 0:
+        raise ValueError(f"--seed = {args.seed} must be >= 0")
+    return _levels(args.levels)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the suite (or replay one case); 0 when every hard bound holds, 1 when one is broken,
+    2 on bad input."""
+    try:
+        levels = _check(args)
+    except ValueError as exc:
+        print(f"partfeeder stress: {exc}", file=sys.stderr)
+        return 2
+    if args.replay is not None:
+        return _replay(args)
+    from experiments.stress.generate import generate_case
+    from experiments.stress.pool import progress_bar, run_cases
+    from experiments.stress.report import summary, table, write_case
+
+    update, close = progress_bar(args.cases)
+    try:
+        results = run_cases(args.seed, args.cases, levels, args.workers, update)
+    finally:
+        close()
+    data = summary(results, args.seed)
+    if args.out is not None:
+        data["files"] = [
+            str(write_case(args.out, generate_case(args.seed, r["index"], levels), r))
+            for r, _ in results
+            if r["hard"]
+        ]
+    print(json.dumps(data, indent=1) if args.json else table(data))
+    return 1 if data["hard_failures"] else 0
+
+
+def _replay(args: argparse.Namespace) -> int:
+    from experiments.stress.case import CaseError
+    from experiments.stress.report import read_case
+    from experiments.stress.runner import record_of
+
+    try:
+        case, stored = read_case(args.replay)
+    except CaseError as exc:
+        print(f"partfeeder stress: {exc}", file=sys.stderr)
+        return 2
+    record = record_of(case)
+    same = stored is not None and record == stored
+    if args.json:
+        print(json.dumps({"record": record, "same_as_stored": same}, indent=1))
+    else:
+        for key, value in record.items():
+            print(f"{key}: {value}")
+        print("same record as stored" if same else "record differs from the stored one")
+    return 1 if record["hard"] else 0

@@ -1,0 +1,307 @@
+"""Stress cases from a seed: case ``i`` of seed ``s`` is a function of ``(s, i)`` alone.
+
+Levels and scene families are dealt in turn (case ``i`` runs level ``i mod L`` on family
+``(i div L) mod F``), so every few dozen cases cover every pair; everything else is drawn from
+``numpy.random.default_rng([s, i])``:
+
+- families: Halton designs of the feeder (the first 128 of seed ``s``) and the free-form
+  scenes of :mod:`experiments.stress.scenes`;
+- placements: ``free`` (0.05 or more from every wall), ``near`` (gap 1e-6 to 0.03),
+  ``flush`` (a side on a face, gap 0 to 1e-3, some tilted by up to 1e-2 rad), ``corner`` (a
+  corner on a corner of the solid), ``overlap`` (dynamic level only: up to 0.0095 deep, inside
+  its validity tolerance 0.01), ``wedged`` (the peg across a chute, touching both walls),
+  ``pin`` (at the junction of the pin's finger and disc), ``drop`` (released above a floor
+  with a post), ``entry`` (a feeder's own start poses);
+- speeds up to what the levels accept (dynamic: 20 length/s and 20 rad/s, its valid-state
+  limit; kinematic and geometric: inputs up to 1000 length/s and 100 rad/s), friction 0 to 2,
+  restitution 0 to 1, h from 1e-5 to 1e-1 s, 10 to 1000 steps, mass 1e-3 to 1e3 and the moment
+  of inertia up to ten times off the part's own.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from experiments.stress.case import Case
+from experiments.stress.measures import Solid, union_of
+from experiments.stress.placement import (
+    boundary_anchors,
+    flush_yaw,
+    free_pose,
+    in_bounds,
+    signed_distance,
+    slide_to,
+    touching_pose,
+    wedge_yaw,
+)
+from experiments.stress.scenes import BOUNDS, FREE_FORM, ISSUE_POST, Obstacles, scale_chute
+from feeders.feeder import ORIENTATIONS
+from feeders.halton import halton_designs
+from feeders.part import Peg
+from feeders.scene_yaml import SceneError, scene_from_dict
+
+FAMILIES = ("feeder", *FREE_FORM)
+PLACEMENTS = (
+    "free",
+    "near",
+    "flush",
+    "corner",
+    "overlap",
+    "wedged",
+    "pin",
+    "drop",
+    "issue_drop",
+    "entry",
+)
+DYNAMIC_SPEED = 20.0  # validity.dynamic.VELOCITY_LIMIT: the fastest valid dynamic state
+OVERLAP_DEPTH = 0.0095  # deepest start overlap: inside the dynamic level's tolerance (0.01)
+# and the scene reader's start check (0.01), with room for its coarser discs
+HALTON_DESIGNS = 128
+_TRIES = 30
+
+
+def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
+    return float(10.0 ** rng.uniform(math.log10(low), math.log10(high)))
+
+
+def _part(rng: np.random.Generator, family: str) -> dict[str, float]:
+    mass = _log_uniform(rng, 1e-3, 1e3)
+    heavy = float(rng.uniform(0.5, 1.0))
+    if family == "feeder":
+        return {"length": 1.6, "width": 1.0, "mass": mass, "heavy_fraction": heavy}
+    length = float(rng.uniform(0.5, 2.5))
+    width = float(rng.uniform(0.2, 0.9) * length)
+    return {"length": length, "width": width, "mass": mass, "heavy_fraction": heavy}
+
+
+def _peg(spec: dict[str, float]) -> Peg:
+    return Peg.two_density(**spec)
+
+
+def _feeder_scene(rng: np.random.Generator, seed: int, env: dict[str, Any]) -> dict[str, Any]:
+    """A feeder document for one of the first Halton designs of ``seed`` that builds."""
+    k = int(rng.integers(HALTON_DESIGNS))
+    designs = halton_designs(HALTON_DESIGNS, seed)
+    for j in range(HALTON_DESIGNS):
+        doc = {"feeder": {"design": designs[(k + j) % HALTON_DESIGNS].to_dict()}, **env}
+        try:
+            scene_from_dict(doc)
+        except SceneError:
+            continue  # a degenerate design: take the next one
+        return doc
+    raise RuntimeError(f"no Halton design of seed {seed} builds a feeder")
+
+
+def _anchor(rng: np.random.Generator, solid: Solid, draw: Obstacles, corner: bool):
+    """A point on the solid's boundary and its outward normal: one of the family's own anchors
+    half of the time, else a random edge (its start vertex for a corner contact)."""
+    if draw.anchors and rng.uniform() < 0.5:
+        anchor = draw.anchors[int(rng.integers(len(draw.anchors)))]
+        return np.array(anchor[0], dtype=float), np.array(anchor[1], dtype=float)
+    edges = boundary_anchors(solid)
+    i = int(rng.integers(len(edges)))
+    a, b, normal = edges[i]
+    if corner:
+        bisector = normal + edges[i - 1][2]
+        size = math.hypot(*bisector)
+        return a, (bisector / size if size > 1e-9 else normal)
+    return a + rng.uniform() * (b - a), normal
+
+
+def _target(rng: np.random.Generator, placement: str) -> float:
+    if placement == "overlap":
+        return -float(rng.uniform(0.0, OVERLAP_DEPTH))
+    if placement == "near":
+        return _log_uniform(rng, 1e-6, 0.03)
+    return 0.0 if rng.uniform() < 0.3 else _log_uniform(rng, 1e-9, 1e-3)
+
+
+def _contact_pose(rng, solid, draw, peg, placement, bounds):
+    """A pose of ``placement`` (near, flush, corner, overlap, pin) and the normal it faces,
+    or None after a few failed draws."""
+    for _ in range(_TRIES):
+        corner = placement == "corner" or (placement == "overlap" and rng.uniform() < 0.5)
+        point, normal = _anchor(rng, solid, draw, corner)
+        if placement in ("flush", "pin") or (placement == "overlap" and not corner):
+            yaw = flush_yaw(normal, int(rng.integers(4)))
+            if rng.uniform() < 0.3:
+                yaw += _log_uniform(rng, 1e-6, 1e-2) * (1 if rng.uniform() < 0.5 else -1)
+        else:
+            yaw = float(rng.uniform(-math.pi, math.pi))
+        start = touching_pose(peg, point, normal, yaw)
+        if placement in ("flush", "pin"):  # the contact anywhere along the side
+            shift = (rng.uniform() - 0.5) * peg.length * np.array([-normal[1], normal[0]])
+            start = (start[0] + shift[0], start[1] + shift[1], yaw)
+        target = _target(rng, placement)
+        pose = slide_to(solid, peg, start, normal, target)
+        if pose is not None and in_bounds(pose, bounds):
+            return pose, normal
+    return None
+
+
+def _wedged(rng, draw: Obstacles, width: float, peg: Peg, level: str):
+    """The pose wedged across the chute ``width`` wide (touching both walls; for the dynamic
+    level up to 0.0095 into both) and the normal of one wall."""
+    assert draw.wedge is not None
+    depth = float(rng.uniform(0.0, OVERLAP_DEPTH)) if level == "dynamic" else 0.0
+    gap = 0.0 if level == "dynamic" else _log_uniform(rng, 1e-9, 1e-4)
+    phi = wedge_yaw(peg, width + 2.0 * depth - 2.0 * gap)
+    assert phi is not None
+    cx, cy, angle = draw.wedge
+    along = rng.uniform(-1.0, 1.0)
+    yaw = angle + (phi if rng.uniform() < 0.5 else -phi) + (math.pi if rng.uniform() < 0.5 else 0)
+    # phi turns the long axis off the chute's axis; the centre of mass is off the middle
+    middle = np.array([cx, cy]) + along * np.array([math.cos(angle), math.sin(angle)])
+    offset = peg.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
+    pose = (float(middle[0] + offset[0]), float(middle[1] + offset[1]), float(yaw))
+    return pose, np.array([-math.sin(angle), math.cos(angle)])
+
+
+def _velocity(rng, level: str, toward: np.ndarray, peg: Peg, placement: str):
+    """``(state velocity, control, inputs)`` for the level."""
+    if rng.uniform() < 0.6:
+        direction = toward
+    else:
+        angle = rng.uniform(-math.pi, math.pi)
+        direction = np.array([math.cos(angle), math.sin(angle)])
+    weight = peg.mass * 9.81
+    still = placement in ("drop", "issue_drop")  # released at rest, no input but gravity
+    if level == "dynamic":
+        force, torque = min(1e3, 2.0 * weight), min(1e3, weight * peg.length)
+        inputs = {"max_force": force, "max_torque": torque}
+        velocity = [0.0, 0.0, 0.0]
+        if not still and rng.uniform() < 0.7:
+            v = _log_uniform(rng, 1e-3, DYNAMIC_SPEED) * direction
+            velocity = [float(v[0]), float(v[1]), float(DYNAMIC_SPEED * rng.uniform(-1, 1) ** 3)]
+        wrench = [0.0, 0.0, 0.0]
+        if not still and rng.uniform() < 0.4:
+            wrench = [float(force * rng.uniform(-1, 1)), float(force * rng.uniform(-1, 1))]
+            wrench.append(float(torque * rng.uniform(-1, 1)))
+        return velocity, wrench, inputs
+    speed, turn = _log_uniform(rng, 0.1, 1e3), _log_uniform(rng, 0.1, 1e2)
+    inputs = {"max_speed": speed, "max_turn": turn}
+    if still:
+        direction = np.array([0.0, -1.0])
+    v = np.clip(rng.uniform(0.1, 1.0) * speed * direction, -speed, speed)
+    omega = float(turn * rng.uniform(-1, 1)) if rng.uniform() < 0.5 else 0.0
+    control = [float(v[0]), float(v[1]), omega]
+    return list(control), control, inputs
+
+
+def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
+    """Case ``index`` of ``seed`` (see the module docstring)."""
+    rng = np.random.default_rng([seed, index])
+    level = levels[index % len(levels)]
+    family = FAMILIES[(index // len(levels)) % len(FAMILIES)]
+    part = _part(rng, family)
+    env: dict[str, Any] = {
+        "part": part,
+        "friction": 0.0 if rng.uniform() < 0.2 else float(rng.uniform(0.0, 2.0)),
+        "restitution": float(rng.uniform(0.0, 1.0)),
+    }
+    h = _log_uniform(rng, 1e-5, 1e-1)
+    duration = h * int(_log_uniform(rng, 10, 1000))
+    choices = ["free", "near", "flush", "corner"] + (["overlap"] if level == "dynamic" else [])
+    issue_drop = False
+    if family == "feeder":
+        doc = _feeder_scene(rng, seed, env)
+        scene = scene_from_dict(doc)
+        solid, bounds = Solid.of(scene), scene.bounds
+        draw = Obstacles([])
+        choices.append("entry")
+    else:
+        draw = FREE_FORM[family](rng)
+        bounds = BOUNDS
+        special = {"chute": "wedged", "pin": "pin", "post_on_floor": "drop"}.get(family)
+        if special:
+            choices += [special] * len(choices)  # half of the draws
+        issue_drop = family == "post_on_floor" and draw.polygons[1] == ISSUE_POST
+    placement = str(rng.choice(choices))
+    if family == "chute":
+        if placement != "wedged":
+            placement = "wedged" if rng.uniform() < 0.5 else placement
+    peg = _peg(part)
+    toward = np.array([0.0, -1.0])
+    pose = None
+    if family == "chute":  # narrower than the part is long: it cannot turn round in it
+        width = peg.width + rng.uniform(0.05, 0.95) * (peg.length - peg.width)
+        draw = scale_chute(draw, width)
+        if placement == "wedged":
+            pose, toward = _wedged(rng, draw, width, peg, level)
+    if family != "feeder":
+        solid = Solid.of_union(union_of(draw.polygons, draw.circles))
+    if placement == "entry":
+        pose = doc_scene_start(scene, rng)
+    elif placement == "drop":
+        if issue_drop and rng.uniform() < 0.5:
+            # the issue's drop exactly: it fell through the floor
+            part.update(length=1.0, width=0.5, mass=1.0, heavy_fraction=0.5)
+            peg = _peg(part)
+            pose, h, duration = (3.0, 1.0, 0.0), 1e-3, 1.5
+            placement = "issue_drop"
+        else:
+            pose = free_pose(rng, solid, peg, (-4.5, 4.5, 0.6, 3.5), 0.05)
+            if pose is not None and rng.uniform() < 0.5:
+                pose = (
+                    (pose[0], pose[1], 0.0)
+                    if signed_distance(solid, peg, (pose[0], pose[1], 0.0)) > 0.05
+                    else pose
+                )
+    elif placement in ("near", "flush", "corner", "overlap", "pin"):
+        found = _contact_pose(rng, solid, draw, peg, placement, bounds)
+        if found is not None:
+            pose, toward = found
+            toward = -toward
+    if pose is None:
+        placement = "free"
+        pose = free_pose(rng, solid, peg, bounds, 0.05)
+        if pose is None:
+            raise RuntimeError(f"case {index} of seed {seed}: no free pose in {family}")
+    pose = (float(pose[0]), float(pose[1]), float(pose[2]))  # plain floats: YAML-ready
+    velocity, control, inputs = _velocity(rng, level, toward, peg, placement)
+    env["inputs"] = inputs
+    if family == "feeder":
+        doc["inputs"] = inputs
+    else:
+        doc = {
+            "name": f"stress {seed}/{index} {family}",
+            "obstacles": draw.document(),
+            "bounds": list(bounds),
+            "starts": {"case": list(pose)},
+            "goal": _goal_around(pose, bounds),
+            **env,
+        }
+    inertia = _peg(part).inertia
+    if placement != "issue_drop" and rng.uniform() < 0.5:
+        inertia *= _log_uniform(rng, 0.1, 10.0)
+    state = tuple(pose) if level == "geometric" else (*pose, *velocity)
+    return Case(
+        seed=seed,
+        index=index,
+        level=level,
+        family=family,
+        placement=placement,
+        scene=doc,
+        state=tuple(float(v) for v in state),
+        control=(float(control[0]), float(control[1]), float(control[2])),
+        h=float(h),
+        duration=float(duration),
+        mass=float(part["mass"]),
+        inertia=float(inertia),
+        friction=float(env["friction"]),
+    )
+
+
+def doc_scene_start(scene, rng: np.random.Generator) -> tuple[float, float, float]:
+    """One of a feeder's entry poses."""
+    return tuple(scene.starts[ORIENTATIONS[int(rng.integers(len(ORIENTATIONS)))]])
+
+
+def _goal_around(pose, bounds) -> dict[str, Any]:
+    """A small goal box around the start, inside the bounds (the stress runs ignore goals)."""
+    x0 = min(max(pose[0] - 0.1, bounds[0]), bounds[1] - 0.2)
+    y0 = min(max(pose[1] - 0.1, bounds[2]), bounds[3] - 0.2)
+    return {"x": [x0, x0 + 0.2], "y": [y0, y0 + 0.2], "yaw": 0.0, "yaw_tol": math.pi}

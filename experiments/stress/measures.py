@@ -1,0 +1,141 @@
+"""Independent measures of a recorded motion: shapely geometry and closed forms only.
+
+Nothing here calls the code under test (the contact kernels of :mod:`validity`): the solid is
+shapely's union of the scene's obstacles, the part is the rectangle of :class:`feeders.part.Peg`
+placed at each recorded pose, and the energies are the textbook sums. Lengths in the scene's
+units, energies in mass length^2/s^2.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import shapely
+
+from feeders.part import Peg
+from feeders.scene import Scene
+
+CIRCLE_SEGMENTS = 256  # a disc as a polygon of 4 * 256 sides: inscribed, so a depth read on
+# it is never more than on the true disc (off by at most r (1 - cos(pi / 1024)) < 5e-6 r)
+
+
+def union_of(polygons: Sequence[Any], circles: Sequence[Any] | np.ndarray) -> shapely.Geometry:
+    """The union of simple polygons (rows [x, y]) and discs ``(cx, cy, r)``, prepared."""
+    pieces = [shapely.Polygon(p) for p in polygons]
+    pieces += [shapely.Point(c[0], c[1]).buffer(c[2], quad_segs=CIRCLE_SEGMENTS) for c in circles]
+    solid = shapely.union_all(pieces) if pieces else shapely.Polygon()
+    shapely.prepare(solid)
+    return solid
+
+
+def part_corners(part: Peg, states: np.ndarray) -> np.ndarray:
+    """The part's corners at every pose ``states[:, :3]`` (x, y, yaw), shape (S, 4, 2)."""
+    body = part.body_vertices()
+    c, s = np.cos(states[:, 2]), np.sin(states[:, 2])
+    x = c[:, None] * body[None, :, 0] - s[:, None] * body[None, :, 1] + states[:, 0:1]
+    y = s[:, None] * body[None, :, 0] + c[:, None] * body[None, :, 1] + states[:, 1:2]
+    return np.stack([x, y], axis=-1)
+
+
+@dataclass(frozen=True)
+class Solid:
+    """The obstacles as the measures need them: the union, its boundary and boundary vertices."""
+
+    union: shapely.Geometry
+    boundary: shapely.Geometry
+    vertices: np.ndarray  # (M, 2): every vertex of the union's boundary
+
+    @classmethod
+    def of(cls, scene: Scene) -> Solid:
+        return cls.of_union(union_of(scene.obstacles.polygons, scene.obstacles.circles))
+
+    @classmethod
+    def of_union(cls, union: shapely.Geometry) -> Solid:
+        boundary = union.boundary
+        shapely.prepare(boundary)
+        vertices = shapely.get_coordinates(boundary) if not union.is_empty else np.zeros((0, 2))
+        return cls(union, boundary, np.unique(vertices, axis=0))
+
+
+def penetration_depths(solid: Solid, part: Peg, states: np.ndarray) -> np.ndarray:
+    """How deep the part overlaps the solid at every pose (length, 0 when apart), shape (S,).
+
+    The deepest of (a) the part's corners inside the union, by shapely's distance to the
+    union's boundary, and (b) the union's boundary vertices inside the part, by the distance to
+    the nearest side of the part's rectangle (closed form in the body frame). A square sunk 0.1
+    into a floor reads 0.1. (An overlap with no vertex of either inside the other, a wall
+    crossing the middle of the part, reads 0 here; :func:`free_components` catches a part that
+    ends on the far side of such a wall.)
+    """
+    states = np.asarray(states, dtype=float).reshape(-1, states.shape[-1])
+    depth = np.zeros(len(states))
+    if solid.union.is_empty or len(states) == 0:
+        return depth
+    corners = part_corners(part, states).reshape(-1, 2)
+    inside = shapely.contains_xy(solid.union, corners[:, 0], corners[:, 1])
+    if inside.any():
+        d = np.zeros(len(corners))
+        d[inside] = shapely.distance(solid.boundary, shapely.points(corners[inside]))
+        depth = np.maximum(depth, d.reshape(len(states), -1).max(axis=1))
+    body = part.body_vertices()
+    x0, y0 = body[:, 0].min(), body[:, 1].min()
+    x1, y1 = body[:, 0].max(), body[:, 1].max()
+    c, s = np.cos(states[:, 2])[:, None], np.sin(states[:, 2])[:, None]
+    for lo in range(0, len(solid.vertices), 256):  # bounded memory: S x 256 at a time
+        v = solid.vertices[lo : lo + 256]
+        dx = v[None, :, 0] - states[:, 0:1]
+        dy = v[None, :, 1] - states[:, 1:2]
+        bx, by = c * dx + s * dy, -s * dx + c * dy  # body frame
+        inner = np.minimum(np.minimum(bx - x0, x1 - bx), np.minimum(by - y0, y1 - by))
+        depth = np.maximum(depth, np.maximum(inner, 0.0).max(axis=1))
+    return depth
+
+
+def free_components(solid: Solid, bounds: tuple[float, float, float, float]) -> list:
+    """The connected pieces of free space for the centre of mass: the bounds box minus the
+    union of the obstacles (shapely polygons, each prepared). A part whose centre of mass moves
+    from one piece to another, or into the solid, went through a wall: the pieces touch only
+    across solid."""
+    box = shapely.box(bounds[0], bounds[2], bounds[1], bounds[3])
+    free = box.difference(solid.union) if not solid.union.is_empty else box
+    pieces = list(getattr(free, "geoms", [free]))
+    for piece in pieces:
+        shapely.prepare(piece)
+    return [p for p in pieces if not p.is_empty]
+
+
+def component_of(components: list, states: np.ndarray) -> np.ndarray:
+    """Index of the free-space piece holding each centre of mass (-1: inside the solid or out
+    of the bounds), shape (S,). A point on a piece's boundary counts as in it."""
+    label = np.full(len(states), -1, dtype=np.int64)
+    x, y = states[:, 0], states[:, 1]
+    for k, piece in enumerate(components):
+        hit = shapely.intersects_xy(piece, x, y) & (label < 0)
+        label[hit] = k
+    return label
+
+
+def mechanical_energy(
+    states: np.ndarray, mass: float, inertia: float, gravity: tuple[float, float]
+) -> np.ndarray:
+    """Kinetic plus gravitational potential energy at every state (x, y, yaw, vx, vy, omega)."""
+    kinetic = (
+        0.5 * mass * (states[:, 3] ** 2 + states[:, 4] ** 2) + 0.5 * inertia * states[:, 5] ** 2
+    )
+    return kinetic - mass * (gravity[0] * states[:, 0] + gravity[1] * states[:, 1])
+
+
+def wrench_work(states: np.ndarray, wrench: tuple[float, float, float]) -> np.ndarray:
+    """Work done by a constant wrench (fx, fy, tau) from the first state to each state: the
+    force times the displacement plus the torque times the rotation (exact for any path)."""
+    d = states[:, :3] - states[0, :3]
+    return wrench[0] * d[:, 0] + wrench[1] * d[:, 1] + wrench[2] * d[:, 2]
+
+
+def kinetic_energy(velocity: np.ndarray, mass: float, inertia: float) -> np.ndarray:
+    """0.5 m |v|^2 + 0.5 I omega^2 of rows (vx, vy, omega)."""
+    v = np.atleast_2d(velocity)
+    return 0.5 * mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + 0.5 * inertia * v[:, 2] ** 2

@@ -1,0 +1,134 @@
+"""The stress run's summary (counts per level and kind, worst cases, speed), as plain data and
+as text, and the replayable files of failing cases."""
+
+from __future__ import annotations
+
+import math
+from collections import Counter, defaultdict
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from experiments.stress.bounds import HARD, SOFT
+from experiments.stress.case import Case, CaseError
+from feeders.fields import read_yaml
+
+WORST = 5  # worst cases shown per measure
+
+
+def _ratio(record: dict, value: str, allowed: str) -> float:
+    return record[value] / record[allowed] if record[allowed] > 0 else record[value]
+
+
+def summary(results: list[tuple[dict[str, Any], float]], seed: int) -> dict[str, Any]:
+    """Counts of cases and of each broken bound per level, hard failures per level and decade
+    of h, the worst cases by penetration and energy gain, and cases per second per level (one
+    core: the wall time of the cases themselves)."""
+    counts: dict[str, Counter] = defaultdict(Counter)
+    by_h: dict[str, Counter] = defaultdict(Counter)
+    seconds: dict[str, float] = defaultdict(float)
+    for record, elapsed in results:
+        level = record["level"]
+        counts[level]["cases"] += 1
+        seconds[level] += elapsed
+        for kind in record["hard"] + record["soft"]:
+            counts[level][kind] += 1
+        if record["hard"]:
+            by_h[level][f"1e{math.floor(math.log10(record['h']))}"] += 1
+    records = [r for r, _ in results]
+    worst = {
+        "penetration": sorted(records, key=lambda r: -r["max_depth"])[:WORST],
+        "energy": sorted(records, key=lambda r: -_ratio(r, "energy_gain", "energy_allowed"))[
+            :WORST
+        ],
+    }
+    return {
+        "seed": seed,
+        "cases": len(records),
+        "hard_failures": sum(1 for r in records if r["hard"]),
+        "counts": {level: dict(c) for level, c in counts.items()},
+        "hard_by_h": {level: dict(sorted(c.items())) for level, c in by_h.items()},
+        "cases_per_second": {
+            level: counts[level]["cases"] / seconds[level] for level in seconds if seconds[level]
+        },
+        "worst": {k: [_brief(r) for r in v] for k, v in worst.items()},
+        "failing": [_brief(r) for r in records if r["hard"]],
+    }
+
+
+def _brief(record: dict) -> dict[str, Any]:
+    keys = (
+        "index",
+        "level",
+        "family",
+        "placement",
+        "h",
+        "max_depth",
+        "depth_allowed",
+        "energy_gain",
+        "energy_allowed",
+        "crossed_step",
+        "error",
+        "hard",
+    )
+    return {k: record[k] for k in keys}
+
+
+def table(data: dict[str, Any]) -> str:
+    """The summary as text: a table of counts per level and kind, then the worst cases."""
+    kinds = ("cases", *HARD, *SOFT)
+    width = max(len(k) for k in kinds) + 1
+    levels = list(data["counts"])
+    lines = [
+        f"stress seed {data['seed']}: {data['cases']} cases, {data['hard_failures']} broke a"
+        " hard bound"
+    ]
+    lines.append("kind".ljust(width) + "".join(f"{lv:>11}" for lv in levels))
+    for kind in kinds:
+        mark = " *" if kind in HARD else ""
+        row = "".join(f"{data['counts'][lv].get(kind, 0):>11}" for lv in levels)
+        lines.append((kind + mark).ljust(width + 2)[: width + 2] + row[2:])
+    rates = data["cases_per_second"]
+    lines.append("cases/s".ljust(width) + "".join(f"{rates.get(lv, 0):>11.1f}" for lv in levels))
+    lines.append("(* hard bound; cases/s on one core)")
+    for level, decades in data["hard_by_h"].items():
+        lines.append(
+            f"hard failures of {level} by h: "
+            + ", ".join(f"h~{d}: {n}" for d, n in decades.items())
+        )
+    for measure, rows in data["worst"].items():
+        lines.append(f"worst {measure}:")
+        for r in rows:
+            lines.append(
+                f"  #{r['index']} {r['level']} {r['family']}/{r['placement']} h={r['h']:.2g}: "
+                f"depth {r['max_depth']:.3g} (allowed {r['depth_allowed']:.3g}), energy gain "
+                f"{r['energy_gain']:.3g} (allowed {r['energy_allowed']:.3g})"
+                + (
+                    f", crossed at step {r['crossed_step']}"
+                    if r["crossed_step"] is not None
+                    else ""
+                )
+                + (f", {r['error']}" if r["error"] else "")
+            )
+    return "\n".join(lines)
+
+
+def write_case(directory: Path, case: Case, record: dict[str, Any]) -> Path:
+    """A failing case as a replayable YAML file (``scene`` in the scene schema, the rest of
+    the case, and the record it gave) in ``directory``; returns its path."""
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / f"case-{case.seed}-{case.index:06d}-{case.level}.yaml"
+    data = case.to_dict()
+    document = {"scene": data.pop("scene"), "case": data, "record": record}
+    path.write_text(yaml.safe_dump(document, sort_keys=False))
+    return path
+
+
+def read_case(path: Path) -> tuple[Case, dict[str, Any] | None]:
+    """The case of a file written by :func:`write_case` and the record stored with it."""
+    document = read_yaml(path, "stress case", CaseError)
+    if not isinstance(document, dict) or "case" not in document or "scene" not in document:
+        raise CaseError(f"{path}: expected a mapping with 'scene' and 'case'")
+    case = Case.from_dict({**document["case"], "scene": document["scene"]})
+    return case, document.get("record")

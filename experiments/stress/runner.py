@@ -1,0 +1,162 @@
+"""Run one stress case at its level and measure it independently: the case's record.
+
+The record is plain data (JSON- and YAML-ready) and a function of the case alone: running a
+case again gives the same record, bit for bit (wall time is measured beside it, not in it).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import traceback
+from typing import Any
+
+import numpy as np
+
+from experiments.stress.bounds import (
+    KINEMATIC_ENERGY_REL,
+    PUSH_OUT_SLACK,
+    broken,
+    dynamic_energy_allowance,
+    penetration_allowance,
+)
+from experiments.stress.case import Case
+from experiments.stress.measures import (
+    Solid,
+    component_of,
+    free_components,
+    kinetic_energy,
+    mechanical_energy,
+    penetration_depths,
+    wrench_work,
+)
+from feeders.scene import Scene
+from feeders.scene_yaml import scene_from_dict
+
+
+def scene_of(case: Case) -> Scene:
+    """The case's scene with its mass, moment of inertia and friction."""
+    scene = scene_from_dict(case.scene, name="stress")
+    part = dataclasses.replace(scene.part, mass=case.mass, inertia=case.inertia)
+    return dataclasses.replace(scene, part=part, friction=case.friction)
+
+
+def _simulate(case: Case, scene: Scene) -> tuple[np.ndarray, dict[str, Any]]:
+    """The recorded states of the case's run (rows, start first) and the level's telemetry."""
+    from validity import make_level  # numba: compiled on first use, so imported here
+
+    level = make_level(case.level, scene, step=case.h)
+    if case.level == "geometric":
+        final = level.propagate(case.state, case.control, case.duration)
+        states = np.array([case.state, final], dtype=float)
+        return states, {"end": "duration", "push_cap": 0.0}
+    if case.level == "kinematic":
+        run = level.run(case.state, case.control, case.duration, record=True)
+        return run.states, {**run.summary, "end": run.end, "push_cap": 0.0}
+    traj = level.simulate(case.state, case.control, case.duration)
+    return traj.states, {**traj.summary, "end": traj.end, "push_cap": level.push_cap}
+
+
+def _energy(
+    case: Case, scene: Scene, states: np.ndarray, deepest: float, push_cap: float
+) -> tuple[float, float]:
+    """``(gain, allowed)``: energy gained without input and the bound on it."""
+    mass, inertia = scene.part.mass, scene.part.inertia
+    if case.level == "kinematic":
+        commanded = float(kinetic_energy(np.array(case.control), mass, inertia)[0])
+        after = kinetic_energy(states[1:, 3:6], mass, inertia)
+        gain = float(np.max(after - commanded, initial=0.0))
+        return gain, KINEMATIC_ENERGY_REL * commanded
+    if case.level == "geometric":
+        return 0.0, 0.0
+    g = math.hypot(*scene.gravity)
+    work = wrench_work(states, case.control)
+    energy = mechanical_energy(states, mass, inertia, scene.gravity)
+    gain = float(np.max(energy - energy[0] - work, initial=0.0))
+    start_kinetic = float(kinetic_energy(states[0, 3:6], mass, inertia)[0])
+    scale = mass * g * scene.part.length + start_kinetic + float(np.max(np.abs(work)))
+    return gain, dynamic_energy_allowance(mass, g, push_cap, deepest, scale)
+
+
+def _push_out(case: Case, scene: Scene, states: np.ndarray, depths: np.ndarray) -> float:
+    """Fastest gain of speed (length/s) in a step that started overlapping, less what gravity
+    and the wrench add in a step (dynamic level; 0 otherwise)."""
+    if case.level != "dynamic" or len(states) < 2:
+        return 0.0
+    speed = np.hypot(states[:, 3], states[:, 4])
+    force = math.hypot(case.control[0], case.control[1]) / scene.part.mass
+    dt = case.duration / (len(states) - 1)
+    rise = speed[1:] - speed[:-1] - dt * (math.hypot(*scene.gravity) + force)
+    overlapping = depths[:-1] > 0.0
+    return float(np.max(rise[overlapping], initial=0.0))
+
+
+def record_of(case: Case) -> dict[str, Any]:
+    """Run the case and measure it (see :mod:`experiments.stress.bounds` for the bounds)."""
+    record: dict[str, Any] = {
+        "seed": case.seed,
+        "index": case.index,
+        "level": case.level,
+        "family": case.family,
+        "placement": case.placement,
+        "h": case.h,
+        "steps": 0,
+        "end": "",
+        "error": None,
+        "nonfinite": False,
+        "start_depth": 0.0,
+        "max_depth": 0.0,
+        "depth_allowed": 0.0,
+        "energy_gain": 0.0,
+        "energy_allowed": 0.0,
+        "push_out": 0.0,
+        "push_out_allowed": 0.0,
+        "crossed_step": None,
+        "lcp_failures": 0,
+        "fallbacks": 0,
+        "jams": 0,
+        "stalls": 0,
+    }
+    try:
+        scene = scene_of(case)
+        states, telemetry = _simulate(case, scene)
+        _measure(case, scene, states, telemetry, record)
+    except Exception as exc:  # every exception is a finding, recorded with where it came from
+        where = traceback.extract_tb(exc.__traceback__)[-1]
+        record["error"] = f"{type(exc).__name__}: {exc} ({where.filename}:{where.lineno})"
+    record["hard"], record["soft"] = broken(record)
+    return record
+
+
+def _measure(
+    case: Case, scene: Scene, states: np.ndarray, telemetry: dict[str, Any], record: dict
+) -> None:
+    record["steps"] = len(states) - 1
+    record["end"] = str(telemetry["end"])
+    record["lcp_failures"] = int(telemetry.get("failures", 0))
+    record["fallbacks"] = int(telemetry.get("frictionless_fallbacks", 0))
+    record["jams"] = int(telemetry.get("jams", 0))
+    record["stalls"] = int(telemetry.get("stalls", 0))
+    if not np.all(np.isfinite(states)):
+        record["nonfinite"] = True
+        states = states[: int(np.argmax(~np.all(np.isfinite(states), axis=1)))]
+        if len(states) == 0:
+            return
+    solid = Solid.of(scene)
+    depths = penetration_depths(solid, scene.part, states)
+    record["start_depth"] = float(depths[0])
+    record["max_depth"] = float(depths.max())
+    record["depth_allowed"] = penetration_allowance(case.level, float(depths[0]))
+    if case.level != "geometric":
+        gain, allowed = _energy(
+            case, scene, states, float(depths.max()), float(telemetry["push_cap"])
+        )
+        record["energy_gain"], record["energy_allowed"] = gain, allowed
+        components = free_components(solid, scene.bounds)
+        label = component_of(components, states)
+        moved = np.nonzero(label != label[0])[0]
+        if label[0] < 0 or len(moved):
+            record["crossed_step"] = int(moved[0]) if len(moved) else 0
+    if case.level == "dynamic":
+        record["push_out"] = _push_out(case, scene, states, depths)
+        record["push_out_allowed"] = float(telemetry["push_cap"]) + PUSH_OUT_SLACK
