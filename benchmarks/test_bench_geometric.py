@@ -4,7 +4,7 @@ Run explicitly (the default test run collects only ``tests/``)::
 
     python -m pytest benchmarks -q
 
-The workload is :func:`experiments.bench.table3_workload` (seed 1): the same poses and
+The workload is :func:`experiments.bench.geometric.table3_workload` (seed 1): the same poses and
 propagations ``partfeeder bench`` measures. Each benchmark times one pass over its batch;
 ``extra_info`` records the batch size so per-check / per-step times can be read off.
 """
@@ -16,7 +16,7 @@ import functools
 import numpy as np
 import pytest
 
-from experiments.bench import PROPAGATION_DURATION, Workload, count_valid, table3_workload
+from experiments.bench.geometric import PROPAGATION_DURATION, Workload, count_valid, table3_workload
 
 
 @functools.cache

@@ -17,8 +17,8 @@ import functools
 import numpy as np
 import pytest
 
-from experiments.sweep_config import config_from_dict
-from experiments.sweep_job import evaluate_design
+from experiments.sweep.config import config_from_dict
+from experiments.sweep.job import SweepJob, evaluate_design
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
 from planners.adapters import state_propagator, validity_checker
@@ -71,20 +71,20 @@ def test_bench_evaluate_design(benchmark, level: str) -> None:
         }
     )
     rung = config.ladder[0]
-    job = {
-        "design_id": 0,
-        "values": [float(v) for v in PRESETS["table3"].to_vector()],
-        "rung": 0,
-        "level": level,
-        "planners": list(rung.planners),
-        "runs": 1,
-        "time_s": rung.time_s,
-        "propagations": rung.propagations,
-        "feeder": config.feeder,
-        "planner": config.planner,
-        "seed": 1,
-        "name": "bench",
-    }
+    job = SweepJob(
+        design_id=0,
+        values=[float(v) for v in PRESETS["table3"].to_vector()],
+        rung=0,
+        level=level,
+        planners=list(rung.planners),
+        runs=1,
+        time_s=rung.time_s,
+        propagations=rung.propagations,
+        feeder=config.feeder,
+        planner=config.planner,
+        seed=1,
+        name="bench",
+    )
     evaluate_design(job)  # compile before timing
     result = benchmark.pedantic(evaluate_design, args=(job,), rounds=5, iterations=1)
     benchmark.extra_info["status"] = result["status"]

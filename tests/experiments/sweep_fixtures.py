@@ -8,8 +8,8 @@ import signal
 import sqlite3
 from pathlib import Path
 
-from experiments.sweep_config import SweepConfig, config_from_dict
-from experiments.sweep_job import evaluate_design
+from experiments.sweep.config import SweepConfig, config_from_dict
+from experiments.sweep.job import evaluate_design
 
 TINY = {
     "name": "tiny",

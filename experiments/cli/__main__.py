@@ -1,0 +1,5 @@
+"""``python -m experiments.cli``: the same as ``partfeeder``."""
+
+from experiments.cli.entry import main
+
+main()

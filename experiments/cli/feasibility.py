@@ -1,0 +1,207 @@
+"""``partfeeder feasibility``: the fraction of N Halton designs feasible at one level against
+another on the same designs and budgets (is the first level's feasible set a subset?).
+
+Rows are written as jobs finish (JSON lines), then as JSON and CSV with a figure and a summary.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from experiments.cli.usage import SEED_RANGE, UsageError, check_time, out_dir
+from experiments.names import LEVEL_NAMES, PLANNER_NAMES
+
+
+def add_arguments(feas: argparse.ArgumentParser) -> None:
+    feas.add_argument(
+        "--levels",
+        default="kinematic,geometric",
+        help=f"two levels A,B; checks that A's feasible designs are feasible at B too "
+        f"(levels: {', '.join(LEVEL_NAMES)}; default: kinematic,geometric)",
+    )
+    feas.add_argument(
+        "--designs", type=int, default=500, help="the first N Halton designs of the Table 2 box"
+    )
+    feas.add_argument(
+        "--planner", default="rrt", help=f"OMPL planner ({', '.join(sorted(PLANNER_NAMES))})"
+    )
+    feas.add_argument(
+        "--time", type=float, default=1.0, help="planning budget per orientation (s, wall clock)"
+    )
+    feas.add_argument("--seed", type=int, default=1, help="seed of the Halton designs and of OMPL")
+    feas.add_argument(
+        "--workers", type=int, default=None, help="worker processes (default: the CPU count)"
+    )
+    feas.add_argument(
+        "--out",
+        type=Path,
+        default=None,
+        help="directory for the rows (JSON lines written as jobs finish, JSON, CSV), the "
+        "figure and the summary",
+    )
+    feas.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+
+def _options(args: argparse.Namespace) -> tuple[list[str], int]:
+    """The two level names and the worker count, or UsageError naming the flag."""
+    import os
+
+    levels = [name.strip() for name in args.levels.split(",")]
+    if len(levels) != 2 or not all(levels):
+        raise UsageError(
+            f"--levels '{args.levels}' must be two level names A,B separated by a comma; "
+            f"levels: {', '.join(LEVEL_NAMES)}"
+        )
+    unknown = [name for name in levels if name not in LEVEL_NAMES]
+    if unknown:
+        raise UsageError(
+            f"--levels: unknown level(s) {', '.join(unknown)}; levels: {', '.join(LEVEL_NAMES)}"
+        )
+    if args.designs < 1:
+        raise UsageError(f"--designs = {args.designs} must be >= 1")
+    if args.planner.lower() not in PLANNER_NAMES:
+        raise UsageError(
+            f"--planner '{args.planner}' is unknown; planners: {', '.join(sorted(PLANNER_NAMES))}"
+        )
+    check_time(args.time)
+    if not (SEED_RANGE[0] <= args.seed <= SEED_RANGE[1]):
+        raise UsageError(
+            f"--seed = {args.seed} is outside the allowed range [{SEED_RANGE[0]}, {SEED_RANGE[1]}]"
+        )
+    workers = args.workers if args.workers is not None else (os.cpu_count() or 1)
+    if workers < 1:
+        raise UsageError(f"--workers = {workers} must be >= 1")
+    return levels, workers
+
+
+def _report(summary: dict) -> str:
+    """The human summary: fraction per level with CI, the 2x2 table, every exception."""
+    from feeders.design import PARAMETER_NAMES
+
+    s, g = summary["settings"], summary["agreement"]
+    a, b = g["a"], g["b"]
+    label_b = f"{b} (run 2)" if a == b else b
+    lines = [
+        f"{s['designs']} Halton designs (seed {s['seed']}) | planner {s['planner']} | "
+        f"{s['time_s']:g} s per orientation | {s['workers']} workers | "
+        f"{summary['wall_time_s']:.1f} s",
+        f"{'level':<22}{'feasible':>10}{'fraction':>10}{'95% CI (Wilson)':>20}",
+    ]
+    for name, f in ((a, g["fraction_a"]), (label_b, g["fraction_b"])):
+        fraction = "-" if f["fraction"] is None else f"{f['fraction']:.3f}"
+        ci = f"[{f['ci95'][0]:.3f}, {f['ci95'][1]:.3f}]"
+        lines.append(f"{name:<22}{f['feasible']:>5}/{f['designs']:<4}{fraction:>10}{ci:>20}")
+    c = g["counts"]
+    lines += [
+        "",
+        f"designs by verdict (A = {a}, B = {label_b}):",
+        f"{'':<10}{'B yes':>8}{'B no':>8}",
+        f"{'A yes':<10}{c['both']:>8}{c['a_only']:>8}",
+        f"{'A no':<10}{c['b_only']:>8}{c['neither']:>8}",
+        f"not built (degenerate, infeasible at both): {g['unbuilt']}",
+    ]
+    if g["unpaired"]:
+        lines.append(f"designs without a verdict at both levels: {g['unpaired']}")
+    verdict = "holds" if g["subset_holds"] else f"fails for {c['a_only']} design(s)"
+    lines.append(f"feasible at {a} => feasible at {label_b}: {verdict}")
+    for e in g["exceptions"]:
+        values = ", ".join(
+            f"{n}={v:.4g}" for n, v in zip(PARAMETER_NAMES, e["values"], strict=True)
+        )
+        lines.append(f"  #{e['index']}: {values}")
+    for path in summary["files"]:
+        lines.append(f"wrote: {path}")
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    import csv
+    import os
+    import time
+
+    from tqdm import tqdm
+
+    from experiments.verdicts.feasibility import (
+        agreement,
+        compare_levels,
+        csv_header,
+        csv_record,
+    )
+    from experiments.verdicts.feasibility_figure import feasibility_figure
+
+    levels, workers = _options(args)
+    out = out_dir(args.out)
+    if workers > (os.cpu_count() or 1):
+        print(
+            f"partfeeder feasibility: note: --workers {workers} > {os.cpu_count()} CPUs; the "
+            "budgets are wall-clock time, so busy workers may flip borderline verdicts",
+            file=sys.stderr,
+        )
+    stream = None
+    if out is not None:
+        # Each finished row is appended and flushed at once: a crash keeps what was done.
+        stream = (out / "feasibility_rows.jsonl").open("w", encoding="utf-8")
+    t0 = time.perf_counter()
+    total = args.designs * len(levels)
+    try:
+        with tqdm(total=total, desc="feasibility", unit="job", file=sys.stderr) as bar:
+
+            def progress(row: dict) -> None:
+                if stream is not None:
+                    stream.write(json.dumps(row) + "\n")
+                    stream.flush()
+                verdict = "feasible" if row["feasible"] else "infeasible"
+                bar.set_postfix_str(f"#{row['index']} {row['level']}: {verdict}", refresh=False)
+                bar.update()
+
+            rows = compare_levels(
+                args.designs,
+                levels,
+                planner=args.planner,
+                time_limit=args.time,
+                seed=args.seed,
+                workers=workers,
+                progress=progress,
+            )
+    except BaseException:
+        if stream is not None:
+            stream.close()
+            print(
+                f"partfeeder feasibility: stopped; finished rows are in {stream.name}",
+                file=sys.stderr,
+            )
+        raise
+    wall = time.perf_counter() - t0
+    files: list[str] = []
+    if stream is not None and out is not None:
+        stream.close()
+        files.append(stream.name)
+        (out / "feasibility_rows.json").write_text(json.dumps(rows, indent=1))
+        files.append(str(out / "feasibility_rows.json"))
+        with (out / "feasibility_rows.csv").open("w", newline="", encoding="utf-8") as f:
+            writer = csv.DictWriter(f, fieldnames=csv_header())
+            writer.writeheader()
+            writer.writerows(csv_record(row) for row in rows)
+        files.append(str(out / "feasibility_rows.csv"))
+        files.append(str(feasibility_figure(rows, levels[0], levels[1], out / "feasibility.png")))
+        files.append(str(out / "feasibility_summary.json"))
+    summary = {
+        "settings": {
+            "levels": levels,
+            "designs": args.designs,
+            "planner": args.planner,
+            "time_s": args.time,
+            "seed": args.seed,
+            "workers": workers,
+        },
+        "wall_time_s": wall,
+        "agreement": agreement(rows, levels[0], levels[1]),
+        "files": files,
+    }
+    if out is not None:
+        (out / "feasibility_summary.json").write_text(json.dumps(summary, indent=2))
+    print(json.dumps(summary, indent=2) if args.json else _report(summary))
+    return 0

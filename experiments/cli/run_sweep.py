@@ -1,0 +1,126 @@
+"""``partfeeder run``: the main job, Halton designs up the ladder of levels through OMPL's
+Benchmark (see :mod:`experiments.sweep`), with a progress bar per level; resumes when started
+again in the same directory."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from experiments.cli.report import finish
+from experiments.cli.usage import UsageError
+from experiments.names import EXECUTOR_NAMES
+
+DEFAULT_OUT = Path("sweep")
+
+
+def add_arguments(run: argparse.ArgumentParser) -> None:
+    run.add_argument(
+        "config",
+        nargs="?",
+        default="default",
+        help="experiment config: a YAML file, or a shipped one by name: default (a few "
+        "minutes), paper (the paper's scale)",
+    )
+    run.add_argument(
+        "--out", type=Path, default=None, help="sweep directory (default: sweep/<config name>)"
+    )
+    run.add_argument("--executor", default="local", choices=EXECUTOR_NAMES)
+    run.add_argument(
+        "--scheduler", default=None, help="Dask scheduler address (tcp://host:port) for dask"
+    )
+    run.add_argument("--workers", type=int, default=None, help="local worker processes")
+    run.add_argument("--designs", type=int, default=None, help="override designs.count")
+    run.add_argument("--no-report", action="store_true", help="skip the HTML report")
+    run.add_argument("--json", action="store_true", help="print the summary as JSON")
+    run.add_argument("--quiet", action="store_true", help="no progress bars")
+
+
+class _Bars:
+    """A progress bar per level, with the survivors so far."""
+
+    def __init__(self, quiet: bool):
+        self.quiet = quiet
+        self.bars: list = []
+        self.feasible: list[int] = []
+
+    def __call__(self, event: str, info: dict[str, Any]) -> None:
+        if self.quiet:
+            return
+        from tqdm import tqdm
+
+        if event == "start":
+            levels = info["levels"]
+            done = info["done"]
+            for rung, level in enumerate(levels):
+                n = sum(1 for (_, lv) in done if lv == level)
+                ok = sum(1 for (_, lv), s in done.items() if lv == level and s == "feasible")
+                bar = tqdm(
+                    total=n,
+                    initial=n,
+                    desc=f"{level:>9}",
+                    unit="design",
+                    position=rung,
+                    file=sys.stderr,
+                    dynamic_ncols=True,
+                    leave=True,
+                    disable=None,  # no bars when stderr is not a terminal
+                )
+                self.bars.append(bar)
+                self.feasible.append(ok)
+                bar.set_postfix(feasible=ok, refresh=False)
+            return
+        rung = info["rung"]
+        bar = self.bars[rung]
+        bar.total = (bar.total or 0) + 1
+        if event == "result" and info["status"] == "feasible":
+            self.feasible[rung] += 1
+        bar.set_postfix(feasible=self.feasible[rung], refresh=False)
+        bar.update()
+
+    def close(self) -> None:
+        for bar in self.bars:
+            bar.close()
+
+
+def run(args: argparse.Namespace) -> int:
+    from experiments.sweep.config import ConfigError, config_from_dict, load_config
+    from experiments.sweep.ladder import export_ompl, run_sweep
+    from experiments.sweep.results_db import ResultsMismatch
+
+    try:
+        config = load_config(args.config)
+        overrides: dict[str, Any] = {}
+        if args.workers is not None:
+            overrides["workers"] = args.workers
+        if args.designs is not None:
+            overrides["designs"] = {"count": args.designs, "seed": config.seed}
+        if overrides:
+            config = config_from_dict({**config.to_dict(), **overrides})
+    except ConfigError as exc:
+        raise UsageError(str(exc)) from None
+    out = args.out or DEFAULT_OUT / config.name
+    bars = _Bars(args.quiet or args.json)
+    t0 = time.perf_counter()
+    try:
+        results = run_sweep(config, out, args.executor, args.scheduler, progress=bars)
+    except ResultsMismatch as exc:
+        raise UsageError(f"{out}: {exc}") from None
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    except KeyboardInterrupt:
+        bars.close()
+        print(
+            f"partfeeder run: interrupted; results so far are in {out}; "
+            "run the same command again to resume",
+            file=sys.stderr,
+        )
+        return 130
+    finally:
+        bars.close()
+    wall = time.perf_counter() - t0
+    export_ompl(results, out / "ompl")
+    return finish(out, args, {"wall_time_s": wall})

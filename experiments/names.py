@@ -1,0 +1,30 @@
+"""The names users type: levels, OMPL planners and paper presets, without importing them.
+
+The command line offers these as choices and the sweep's config checks against them; importing
+the real registries (``validity.LEVELS`` loads numba, ``planners.registry.PLANNERS`` loads OMPL,
+``feeders.design.PRESETS`` loads NumPy) would make ``partfeeder --help`` as slow as those
+imports. ``tests/experiments/test_names.py`` checks that these lists equal the registries.
+"""
+
+from __future__ import annotations
+
+# validity.LEVELS, in the order of the ladder (the order matters: a sweep climbs it).
+LEVEL_NAMES = ("geometric", "kinematic", "dynamic")
+# planners.registry.PLANNERS, in its order.
+PLANNER_NAMES = ("rrt", "kpiece", "est")
+# feeders.design.PRESETS: the paper's designs (Figs. 4-9, Table 3).
+PRESET_NAMES = (
+    "fig4",
+    "fig5a",
+    "fig5b",
+    "fig6a",
+    "fig6b",
+    "fig7a",
+    "fig7b",
+    "fig8a",
+    "fig8b",
+    "fig9",
+    "table3",
+)
+# Where a sweep's jobs run (experiments.sweep.executors): local processes or a Dask cluster.
+EXECUTOR_NAMES = ("local", "dask")

@@ -1,0 +1,210 @@
+"""The experiment config of ``partfeeder run``: which designs, which ladder, which budgets.
+
+Read from YAML with ``yaml.safe_load`` and validated field by field; an error names the field
+and its allowed range. Example (``experiments/configs/default.yaml``)::
+
+    name: default
+    designs: {count: 24, seed: 1}        # the first `count` points of the scrambled Halton
+                                          # sequence over Table 2's box, seeded by `seed`
+    feeder:                               # what every design's scene shares (all optional)
+      friction: 0.3
+      restitution: 0.3
+      inputs: {max_speed: 1, max_turn: 1, max_force: 10, max_torque: 2}
+    planner: {step: 0.05, min_steps: 1, max_steps: 20}   # OMPL's propagation (optional)
+    ladder:                               # climbed in this order
+      - level: geometric
+        planners: [rrt]                   # rrt, kpiece, est
+        runs: 1                           # runs per planner and entry orientation
+        budget: {time: 0.5}               # s per run; or {propagations: 20000, time: 60}
+      - ...
+    holdout: {fraction: 0.25, seed: 7}    # designs that climb every rung whatever their
+                                          # verdicts: the sample that measures the pruning
+    workers: 2                            # processes (local executor)
+    max_attempts: 2                       # worker deaths before a design is quarantined
+
+Everything is plain data, so a config travels to worker processes and Dask workers as is.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from experiments.names import LEVEL_NAMES, PLANNER_NAMES
+from feeders.fields import (
+    FieldError,
+    field_errors_as,
+    integer_field,
+    mapping_field,
+    number_field,
+    read_yaml,
+)
+from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
+
+CONFIG_DIR = Path(__file__).resolve().parents[1] / "configs"  # experiments/configs/*.yaml
+MAX_DESIGNS = 1_000_000
+
+
+class ConfigError(FieldError):
+    """An experiment config that cannot be read or is not valid; names the field."""
+
+
+@dataclass(frozen=True)
+class Rung:
+    """One level of the ladder: its planners, runs per planner and orientation, budget."""
+
+    level: str
+    planners: tuple[str, ...]
+    runs: int = 1
+    time_s: float = 1.0
+    propagations: int | None = None
+
+
+@dataclass(frozen=True)
+class SweepConfig:
+    """A validated experiment config (see the module docstring for the fields)."""
+
+    name: str
+    count: int
+    seed: int
+    ladder: tuple[Rung, ...]
+    feeder: dict[str, Any] = field(default_factory=dict)
+    planner: dict[str, Any] = field(default_factory=dict)
+    holdout_fraction: float = 0.0
+    holdout_seed: int = 0
+    workers: int = 2
+    max_attempts: int = 2
+
+    def to_dict(self) -> dict[str, Any]:
+        """The config as the YAML document it came from (normalised; plain data)."""
+        ladder = []
+        for r in self.ladder:
+            budget: dict[str, Any] = {"time": r.time_s}
+            if r.propagations is not None:
+                budget["propagations"] = r.propagations
+            ladder.append(
+                {"level": r.level, "planners": list(r.planners), "runs": r.runs, "budget": budget}
+            )
+        return {
+            "name": self.name,
+            "designs": {"count": self.count, "seed": self.seed},
+            "feeder": dict(self.feeder),
+            "planner": dict(self.planner),
+            "ladder": ladder,
+            "holdout": {"fraction": self.holdout_fraction, "seed": self.holdout_seed},
+            "workers": self.workers,
+            "max_attempts": self.max_attempts,
+        }
+
+    def results_key(self) -> str:
+        """A digest of everything that decides the results (not ``workers``, which only
+        decides how fast they come): a results database belongs to one key."""
+        data = self.to_dict()
+        data.pop("workers")
+        data.pop("name")
+        return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def _rung(spec: Any, field_name: str) -> Rung:
+    spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget"})
+    level = spec.get("level")
+    if level not in LEVEL_NAMES:
+        raise ConfigError(f"{field_name}.level = {level!r}; allowed: {', '.join(LEVEL_NAMES)}")
+    planners = spec.get("planners", ["rrt"])
+    if not isinstance(planners, list) or not planners:
+        raise ConfigError(f"{field_name}.planners: expected a non-empty list of planner names")
+    for i, p in enumerate(planners):
+        if str(p).lower() not in PLANNER_NAMES:
+            raise ConfigError(
+                f"{field_name}.planners[{i}] = {p!r}; allowed: {', '.join(PLANNER_NAMES)}"
+            )
+    if len(set(planners)) != len(planners):
+        raise ConfigError(f"{field_name}.planners: {planners} names a planner twice")
+    runs = integer_field(spec.get("runs", 1), f"{field_name}.runs", 1, 1000)
+    budget = mapping_field(spec.get("budget", {}), f"{field_name}.budget", {"time", "propagations"})
+    if not budget:
+        raise ConfigError(f"{field_name}.budget: give 'time' (s) and/or 'propagations'")
+    propagations = None
+    if "propagations" in budget:
+        propagations = integer_field(
+            budget["propagations"], f"{field_name}.budget.propagations", 1, 10**9
+        )
+    # With a count budget the time is only a cap: generous unless given.
+    default_time = 600.0 if propagations is not None else 1.0
+    time_s = number_field(
+        budget.get("time", default_time), f"{field_name}.budget.time", 1e-3, 86400.0
+    )
+    return Rung(level, tuple(str(p).lower() for p in planners), runs, time_s, propagations)
+
+
+def config_from_dict(data: Any, name: str = "sweep") -> SweepConfig:
+    """Validate a parsed YAML document; raises :class:`ConfigError` naming the field."""
+    with field_errors_as(ConfigError):
+        return _config_from_dict(data, name)
+
+
+def _config_from_dict(data: Any, name: str) -> SweepConfig:
+    data = mapping_field(
+        data,
+        "config",
+        {"name", "designs", "feeder", "planner", "ladder", "holdout", "workers", "max_attempts"},
+    )
+    designs = mapping_field(data.get("designs"), "designs", {"count", "seed"})
+    if "count" not in designs:
+        raise ConfigError("designs.count is required (number of Halton designs)")
+    count = integer_field(designs["count"], "designs.count", 1, MAX_DESIGNS)
+    seed = integer_field(designs.get("seed", 1), "designs.seed", 0, 2**31 - 1)
+    feeder = mapping_field(data.get("feeder", {}) or {}, "feeder", set(ENVIRONMENT_KEYS))
+    environment_from_dict(feeder, prefix="feeder.")  # validate now, not in a worker
+    planner = mapping_field(
+        data.get("planner", {}) or {}, "planner", {"step", "min_steps", "max_steps"}
+    )
+    if "step" in planner:
+        number_field(planner["step"], "planner.step", 1e-4, 10.0)
+    for key in ("min_steps", "max_steps"):
+        if key in planner:
+            integer_field(planner[key], f"planner.{key}", 1, 10_000)
+    if planner.get("min_steps", 1) > planner.get("max_steps", 20):
+        raise ConfigError("planner: need min_steps <= max_steps")
+    ladder_spec = data.get("ladder")
+    if not isinstance(ladder_spec, list) or not ladder_spec:
+        raise ConfigError("ladder: expected a non-empty list of levels to climb")
+    ladder = tuple(_rung(spec, f"ladder[{i}]") for i, spec in enumerate(ladder_spec))
+    levels = [r.level for r in ladder]
+    if len(set(levels)) != len(levels):
+        raise ConfigError(f"ladder: {levels} has a level twice")
+    order = [LEVEL_NAMES.index(level) for level in levels]
+    if order != sorted(order):
+        raise ConfigError(f"ladder: {levels} must climb in order {', '.join(LEVEL_NAMES)}")
+    holdout = mapping_field(data.get("holdout", {}) or {}, "holdout", {"fraction", "seed"})
+    fraction = number_field(holdout.get("fraction", 0.0), "holdout.fraction", 0.0, 1.0)
+    holdout_seed = integer_field(holdout.get("seed", 0), "holdout.seed", 0, 2**31 - 1)
+    workers = integer_field(data.get("workers", 2), "workers", 1, 1024)
+    attempts = integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100)
+    return SweepConfig(
+        name=str(data.get("name", name)),
+        count=count,
+        seed=seed,
+        ladder=ladder,
+        feeder=dict(feeder),
+        planner=dict(planner),
+        holdout_fraction=fraction,
+        holdout_seed=holdout_seed,
+        workers=workers,
+        max_attempts=attempts,
+    )
+
+
+def load_config(path: str | Path) -> SweepConfig:
+    """Read a config file (or a shipped config by name: ``default``, ``paper``)."""
+    path = Path(path)
+    if not path.exists() and (CONFIG_DIR / f"{path.name}.yaml").exists() and path.suffix == "":
+        path = CONFIG_DIR / f"{path.name}.yaml"
+    data = read_yaml(path, "config", ConfigError)
+    try:
+        return config_from_dict(data, name=path.stem)
+    except ConfigError as exc:
+        raise ConfigError(f"{path}: {exc}") from None

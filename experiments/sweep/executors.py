@@ -1,0 +1,201 @@
+"""Where a sweep's jobs run: a local process pool (the default) or a Dask cluster.
+
+Both take the same plain-data jobs and the same callbacks, so a sweep gives the same results
+on either for the same seed (with a budget in propagations; a time budget depends on the
+machine). Results come back to the calling process, the database's only writer.
+
+A worker that dies (a crash in compiled code, the OOM killer, a signal) is replaced and its
+job tried again; a job that kills its worker ``max_attempts`` times is quarantined with the
+reason, and the sweep goes on. A job that raises a Python exception is quarantined at once
+(the same input raises again). Locally, a dead worker breaks the whole pool, taking down the
+jobs running beside it, so every job that was in flight is re-run alone in a fresh process:
+innocent ones finish, the culprit is caught in the act, with its exit signal.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import signal
+from collections import deque
+from collections.abc import Callable, Iterable
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from experiments.sweep.job import SweepJob as Job
+
+Evaluate = Callable[["Job"], dict[str, Any]]
+OnDone = Callable[["Job", dict[str, Any], int], Iterable["Job"]]
+OnQuarantine = Callable[["Job", int, str], None]
+
+
+def quiet_worker() -> None:
+    """Worker start-up: OMPL's console log off (it would interleave with the progress bars)."""
+    from ompl import util as ou
+
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+
+
+def _death(exitcode: int | None) -> str:
+    if exitcode is not None and exitcode < 0:
+        try:
+            return f"killed by signal {signal.Signals(-exitcode).name}"
+        except ValueError:
+            return f"killed by signal {-exitcode}"
+    return f"exited with code {exitcode}"
+
+
+def _error(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {exc}"
+
+
+def _alone(evaluate: Evaluate, job: Job, conn) -> None:
+    quiet_worker()
+    try:
+        conn.send(("ok", evaluate(job)))
+    except Exception as exc:
+        conn.send(("error", _error(exc)))
+    conn.close()
+
+
+def _run_alone(evaluate: Evaluate, job: Job) -> tuple[str, Any]:
+    """Run one job in a fresh process: ('ok', result), ('error', message) or ('died', why)."""
+    context = multiprocessing.get_context("spawn")
+    receive, send = context.Pipe(duplex=False)
+    process = context.Process(target=_alone, args=(evaluate, job, send), daemon=True)
+    process.start()
+    send.close()
+    try:
+        outcome = receive.recv()
+    except EOFError:
+        outcome = None
+    process.join()
+    if outcome is None:
+        return "died", _death(process.exitcode)
+    return outcome
+
+
+def run_local(
+    evaluate: Evaluate,
+    jobs: Iterable[Job],
+    on_done: OnDone,
+    on_quarantine: OnQuarantine,
+    workers: int = 2,
+    max_attempts: int = 2,
+) -> None:
+    """Run ``jobs`` and the jobs that ``on_done`` returns, ``workers`` at a time.
+
+    ``on_done(job, result, attempts)`` is called here as each job finishes (in completion
+    order) and returns the jobs that follow from it; ``on_quarantine(job, attempts, reason)``
+    for a job given up. At most ``workers`` jobs are in flight, so a broken pool takes down
+    no more than that.
+    """
+    queue: deque[Job] = deque(jobs)
+    suspects: deque[Job] = deque()
+    deaths: dict[int, int] = {}
+    context = multiprocessing.get_context("spawn")
+
+    def new_pool() -> ProcessPoolExecutor:
+        return ProcessPoolExecutor(workers, mp_context=context, initializer=quiet_worker)
+
+    pool = new_pool()
+    inflight: dict[Future, Job] = {}
+
+    def settle(future: Future) -> bool:
+        """Hand a finished future's job on; True if its worker (and so the pool) died."""
+        job = inflight.pop(future)
+        try:
+            result = future.result()
+        except BrokenProcessPool:
+            suspects.append(job)
+            return True
+        except Exception as exc:
+            on_quarantine(job, 1, _error(exc))
+        else:
+            queue.extend(on_done(job, result, 1))
+        return False
+
+    try:
+        while queue or inflight or suspects:
+            if suspects and not inflight:
+                job = suspects.popleft()
+                key = id(job)
+                status, value = _run_alone(evaluate, job)
+                if status == "ok":
+                    queue.extend(on_done(job, value, deaths.get(key, 0) + 1))
+                elif status == "error":
+                    on_quarantine(job, deaths.get(key, 0) + 1, value)
+                else:
+                    deaths[key] = deaths.get(key, 0) + 1
+                    if deaths[key] >= max_attempts:
+                        on_quarantine(
+                            job,
+                            deaths[key],
+                            f"its worker died {deaths[key]} times running it alone (last: {value})",
+                        )
+                    else:
+                        suspects.append(job)
+                continue
+            while queue and len(inflight) < workers and not suspects:
+                job = queue.popleft()
+                inflight[pool.submit(evaluate, job)] = job
+            done, _ = wait(inflight, return_when=FIRST_COMPLETED)
+            broken = [settle(future) for future in done]
+            if any(broken):
+                wait(inflight)  # the others fail with the pool: they become suspects too
+                for future in list(inflight):
+                    settle(future)
+                pool.shutdown(wait=True, cancel_futures=True)
+                pool = new_pool()
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def run_dask(
+    evaluate: Evaluate,
+    jobs: Iterable[Job],
+    on_done: OnDone,
+    on_quarantine: OnQuarantine,
+    scheduler: str,
+) -> None:
+    """The same as :func:`run_local` on the Dask cluster whose scheduler is at ``scheduler``
+    (``tcp://host:port``). Its workers need partfeeder installed. Dask replaces a dead worker
+    and reschedules its task; after the scheduler's ``distributed.scheduler.allowed-failures``
+    deaths (Dask's setting, 3 by default, not the config's ``max_attempts``) it gives up
+    (``KilledWorker``) and the job is quarantined.
+    """
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise RuntimeError(
+            "the dask executor needs Dask's distributed scheduler: "
+            "pip install 'partfeeder[dask]' (or: pip install distributed)"
+        ) from None
+    try:
+        from distributed.scheduler import KilledWorker
+    except ImportError:  # older releases
+        from distributed import KilledWorker  # type: ignore[attr-defined,no-redef]
+
+    import dask
+
+    deaths = int(dask.config.get("distributed.scheduler.allowed-failures", 3)) + 1
+    with Client(scheduler, set_as_default=False) as client:
+        client.run(quiet_worker)
+        futures = {}
+        for job in jobs:
+            futures[client.submit(evaluate, job, pure=False)] = job
+        pending = as_completed(list(futures), loop=client.loop)
+        for future in pending:
+            job = futures.pop(future)
+            try:
+                result = future.result()
+            except KilledWorker as exc:
+                on_quarantine(job, deaths, f"its Dask worker died every time it ran it ({exc})")
+            except Exception as exc:
+                on_quarantine(job, 1, _error(exc))
+            else:
+                for follow in on_done(job, result, 1):
+                    new = client.submit(evaluate, follow, pure=False)
+                    futures[new] = follow
+                    pending.add(new)

@@ -1,0 +1,147 @@
+"""One job of a sweep: one design at one level, from plain data to plain data.
+
+A job is a :class:`SweepJob`, a dict of declared shape that pickles (worker processes and Dask
+workers build their own OMPL objects from it); :func:`sweep_job` makes it from the config, the
+only place its keys are filled, and :func:`job_from_dict` checks one that arrived from
+elsewhere. The result is a dict for :func:`experiments.sweep.results_db.record`.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import time
+from typing import TYPE_CHECKING, Any, TypedDict
+
+import numpy as np
+
+from feeders.design import PARAMETER_NAMES, DesignParameters
+from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
+from feeders.scene_yaml import environment_from_dict
+
+if TYPE_CHECKING:
+    from experiments.sweep.config import SweepConfig
+
+
+class SweepJob(TypedDict):
+    """One design at one rung of the ladder, as a worker receives it."""
+
+    design_id: int
+    values: list[float]  # the 12 parameters, order of PARAMETER_NAMES
+    rung: int  # index in the ladder
+    level: str
+    planners: list[str]
+    runs: int  # per planner and entry orientation
+    time_s: float  # budget per run (s)
+    propagations: int | None  # budget per run in propagations, or None
+    feeder: dict[str, Any]  # the scene's environment (config's ``feeder``)
+    planner: dict[str, Any]  # OMPL's propagation settings (config's ``planner``)
+    seed: int  # the sweep's
+    name: str  # the sweep's
+
+
+def sweep_job(config: SweepConfig, design_id: int, values: list[float], rung: int) -> SweepJob:
+    """The job of design ``design_id`` (with ``values``) at rung ``rung`` of ``config``."""
+    r = config.ladder[rung]
+    return SweepJob(
+        design_id=design_id,
+        values=values,
+        rung=rung,
+        level=r.level,
+        planners=list(r.planners),
+        runs=r.runs,
+        time_s=r.time_s,
+        propagations=r.propagations,
+        feeder=config.feeder,
+        planner=config.planner,
+        seed=config.seed,
+        name=config.name,
+    )
+
+
+def job_from_dict(data: dict[str, Any]) -> SweepJob:
+    """``data`` as a :class:`SweepJob`; ValueError naming a missing or unknown key."""
+    keys = set(SweepJob.__annotations__)
+    missing, unknown = sorted(keys - set(data)), sorted(set(data) - keys)
+    if missing or unknown:
+        raise ValueError(f"sweep job: missing keys {missing}, unknown keys {unknown}")
+    return SweepJob(**data)  # type: ignore[typeddict-item]
+
+
+def run_seed(sweep_seed: int, design_id: int, rung: int) -> int:
+    """The OMPL seed of a design's evaluation at a rung (run r uses this + r): derived
+    from the sweep's seed by NumPy's SeedSequence, so designs and rungs do not share streams."""
+    state = np.random.SeedSequence([sweep_seed, design_id, rung]).generate_state(1)[0]
+    return int(state % (2**31 - 1000))
+
+
+def evaluate_design(job: SweepJob) -> dict[str, Any]:
+    """Is the design feasible at the job's level? Plans it from the heavy-leading entry, then
+    the heavy-trailing one, each through OMPL's Benchmark with every planner of the rung,
+    ``runs`` runs each. An entry is solved when any run reaches the goal exactly (the planners
+    search for the same thing: one plan is a proof that the feeder can do it); the design is
+    feasible when both are. Once an entry fails the other is skipped: the verdict is known.
+    A design that cannot be built is ``degenerate``, with the reason.
+
+    Returns a dict for :func:`experiments.sweep.results_db.record`. ``job`` is checked
+    first (:func:`job_from_dict`): it may come from another process or machine.
+    """
+    from ompl import util as ou
+
+    from planners.benchmark import Budget, benchmark_problem
+    from planners.plan import PlannerSettings
+
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+    job = job_from_dict(dict(job))
+    t0 = time.perf_counter()
+    design_id, level = int(job["design_id"]), str(job["level"])
+    result: dict[str, Any] = {
+        "design_id": design_id,
+        "level": level,
+        "status": "infeasible",
+        "reason": None,
+        "orientations": dict.fromkeys(ORIENTATIONS),
+        "runs": [],
+        "logs": {},
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+    }
+    values = [float(v) for v in job["values"]]
+    try:
+        scene = build_feeder(
+            DesignParameters.from_vector(values),
+            name=f"design {design_id}",
+            **environment_from_dict(job["feeder"]),
+        )
+    except DegenerateDesign as exc:
+        result["status"] = "degenerate"
+        result["reason"] = exc.reason
+        result["wall_time_s"] = time.perf_counter() - t0
+        return result
+    budget = Budget(float(job["time_s"]), job["propagations"])
+    seed = run_seed(int(job["seed"]), design_id, int(job["rung"]))
+    parameters: dict[str, float | int | str] = dict(zip(PARAMETER_NAMES, values, strict=True))
+    parameters.update(design_id=design_id, level=level, seed=seed)
+    feasible = True
+    for orientation in ORIENTATIONS:
+        bench = benchmark_problem(
+            scene,
+            level,
+            orientation,
+            job["planners"],
+            int(job["runs"]),
+            budget,
+            seed,
+            experiment=f"{job['name']}: design {design_id}, {level}, {orientation}",
+            parameters={**parameters, "orientation": orientation},
+            settings=PlannerSettings(**job["planner"]),
+        )
+        result["logs"][orientation] = bench.log
+        result["runs"].extend({"orientation": orientation, **run} for run in bench.runs)
+        solved = any(run["solved"] for run in bench.runs)
+        result["orientations"][orientation] = solved
+        if not solved:
+            feasible = False
+            break
+    result["status"] = "feasible" if feasible else "infeasible"
+    result["wall_time_s"] = time.perf_counter() - t0
+    return result

@@ -1,0 +1,170 @@
+"""The main job: Halton designs climb the ladder of levels; only survivors go up (Sec. 4).
+
+Every design is evaluated at the first rung; a design goes up a rung when it is feasible at
+the one below (both entry orientations solved), so the costly levels see few designs. The
+designs of the holdout, a seeded random sample, climb every rung whatever their verdicts:
+their verdicts at the top level measure how well each lower level prunes (precision and
+recall) and what evaluating every design at the top would have cost (the speed-up).
+
+A design's next rung is submitted as soon as its result arrives, so the workers never wait
+for a whole level to end. Results are stored as they come (see ``results_db``); a sweep
+started again in the same directory resumes: what is stored is not run again.
+
+Outputs in the sweep's directory: ``results.sqlite``, ``ompl/logs/*.log`` (OMPL's benchmark
+logs), ``ompl/benchmark.db`` (made from them by OMPL's ``ompl_benchmark_statistics``; Planner
+Arena reads it), ``summary.json`` and the report.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import sqlite3
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from experiments.sweep import results_db
+from experiments.sweep.config import SweepConfig
+from experiments.sweep.executors import run_dask, run_local
+from experiments.sweep.job import SweepJob, evaluate_design, sweep_job
+from feeders.halton import halton_points
+
+RESULTS_FILE = "results.sqlite"
+
+
+def holdout_ids(count: int, fraction: float, seed: int) -> set[int]:
+    """The design ids of the holdout: round(fraction * count) of them, drawn without
+    replacement by a generator seeded with ``seed`` (independent of the Halton seed)."""
+    n = round(fraction * count)
+    if n == 0:
+        return set()
+    return {int(i) for i in np.random.default_rng(seed).choice(count, size=n, replace=False)}
+
+
+def pending_jobs(
+    config: SweepConfig,
+    designs: dict[int, list[float]],
+    holdout: set[int],
+    done: dict[tuple[int, str], str],
+) -> list[SweepJob]:
+    """The next job of every design, from what is stored: each design climbs from rung 0
+    while it is stored feasible (or is in the holdout and not quarantined); its first rung
+    that is not stored is its job. Designs that are finished have none."""
+    jobs = []
+    for design_id, values in designs.items():
+        for rung, r in enumerate(config.ladder):
+            status = done.get((design_id, r.level))
+            if status is None:
+                jobs.append(sweep_job(config, design_id, values, rung))
+                break
+            if status == "quarantined" or (status != "feasible" and design_id not in holdout):
+                break
+    return jobs
+
+
+def run_sweep(
+    config: SweepConfig,
+    out_dir: str | Path,
+    executor: str = "local",
+    scheduler: str | None = None,
+    progress: Callable[[str, dict[str, Any]], None] | None = None,
+    evaluate: Callable[[SweepJob], dict[str, Any]] = evaluate_design,
+) -> Path:
+    """Run (or resume) the sweep of ``config`` in ``out_dir``; returns the results database.
+
+    ``progress(event, info)`` is called in this process: ``("start", {"levels", "done"})``
+    once, then ``("result", {"rung", "level", "status"})`` per evaluation and
+    ``("quarantine", {...})`` per job given up. ``evaluate`` runs in the workers (a function
+    of a module they can import; tests replace it to make workers crash).
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / RESULTS_FILE
+    db = results_db.connect(path)
+    try:
+        results_db.claim(db, config.to_dict(), config.results_key())
+        points = halton_points(config.count, config.seed)
+        holdout = holdout_ids(config.count, config.holdout_fraction, config.holdout_seed)
+        designs = {i: [float(v) for v in points[i]] for i in range(config.count)}
+        results_db.add_designs(db, ((i, i in holdout, v) for i, v in designs.items()))
+        done = results_db.finished(db)
+        jobs = pending_jobs(config, designs, holdout, done)
+        if progress is not None:
+            progress("start", {"levels": [r.level for r in config.ladder], "done": done})
+        _climb(config, db, jobs, designs, holdout, executor, scheduler, progress, evaluate)
+    finally:
+        db.close()
+    return path
+
+
+def _climb(
+    config: SweepConfig,
+    db: sqlite3.Connection,
+    jobs: list[SweepJob],
+    designs: dict[int, list[float]],
+    holdout: set[int],
+    executor: str,
+    scheduler: str | None,
+    progress: Callable[[str, dict[str, Any]], None] | None,
+    evaluate: Callable[[SweepJob], dict[str, Any]],
+) -> None:
+    top = len(config.ladder) - 1
+
+    def on_done(job: SweepJob, result: dict[str, Any], attempts: int) -> list[SweepJob]:
+        rung = int(job["rung"])
+        results_db.record(db, result, rung, attempts)
+        if progress is not None:
+            progress("result", {"rung": rung, "level": job["level"], "status": result["status"]})
+        design_id = int(job["design_id"])
+        climbs = result["status"] == "feasible" or design_id in holdout
+        if climbs and rung < top:
+            return [sweep_job(config, design_id, designs[design_id], rung + 1)]
+        return []
+
+    def on_quarantine(job: SweepJob, attempts: int, reason: str) -> None:
+        results_db.quarantine(db, int(job["design_id"]), str(job["level"]), attempts, reason)
+        if progress is not None:
+            progress("quarantine", {"rung": int(job["rung"]), "level": job["level"]})
+
+    if executor == "local":
+        run_local(evaluate, jobs, on_done, on_quarantine, config.workers, config.max_attempts)
+    elif executor == "dask":
+        if not scheduler:
+            raise ValueError("the dask executor needs --scheduler ADDRESS (tcp://host:port)")
+        run_dask(evaluate, jobs, on_done, on_quarantine, scheduler)
+    else:
+        raise ValueError(f"unknown executor '{executor}'; executors: local, dask")
+
+
+def export_ompl(results: str | Path, out_dir: str | Path) -> Path:
+    """Write every stored OMPL log to ``out_dir/logs`` and make ``out_dir/benchmark.db`` from
+    them with OMPL's own ``ompl_benchmark_statistics`` reader (made anew: a resumed sweep's
+    database has each experiment once). The design parameters, level, orientation and seed
+    are columns of its ``experiments`` table."""
+    from ompl import _benchmark_statistics as obs
+
+    out = Path(out_dir)
+    logs = out / "logs"
+    logs.mkdir(parents=True, exist_ok=True)
+    db = results_db.connect(results, readonly=True)
+    paths = []
+    try:
+        rows = db.execute(
+            "SELECT design_id, level, orientation, log FROM ompl_logs "
+            "ORDER BY design_id, level, orientation"
+        )
+        for row in rows:
+            p = logs / f"design{row['design_id']:06d}-{row['level']}-{row['orientation']}.log"
+            p.write_text(row["log"])
+            paths.append(str(p))
+    finally:
+        db.close()
+    target = out / "benchmark.db"
+    target.unlink(missing_ok=True)
+    with contextlib.redirect_stdout(io.StringIO()):  # it prints a line per file
+        obs.readBenchmarkLog(str(target), paths, False)
+        obs.computeViews(str(target), False)
+    return target

@@ -1,0 +1,109 @@
+"""The report of a sweep: one self-contained HTML page with its figures beside it.
+
+``write_report(out_dir, summary, db_path)`` writes ``out_dir/report.html`` and PNG figures in
+``out_dir/figures/``, referenced by relative paths: the directory holds everything (no network,
+no scripts), so it can be copied, archived or opened from a cluster's file system as is.
+
+The numbers (counts, medians, precision and recall with their intervals, the speed-up) come
+from ``summary``, computed elsewhere from the same database: this module only shows them, so
+the page and any JSON summary never disagree. The figures that need more than a summary (the
+feasible set in design space, the distributions of planner run times and tree sizes) read the
+results database (see :mod:`experiments.sweep.results_db`) read-only, which is safe while a sweep is
+still writing to it. A sweep still running, or one without a holdout, still gets a report: a
+missing number is shown as a dash and a figure without data says so.
+"""
+
+from __future__ import annotations
+
+import os
+from contextlib import closing
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from experiments.sweep.report_figures import (
+    best_figure,
+    feasible_set_figure,
+    planners_figure,
+    pruning_figure,
+    survivors_figure,
+)
+from experiments.sweep.report_html import html_page
+from experiments.sweep.results_db import connect
+from feeders.design import PARAMETER_NAMES
+
+FIGURES = ("survivors", "feasible_set", "planners", "pruning", "best_designs")
+
+
+def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Path:
+    """Write out_dir/report.html and out_dir/figures/*.png; returns the HTML path.
+
+    ``summary`` holds the sweep's statistics (keys ``name``, ``results_key``, ``designs``,
+    ``holdout``, ``ladder``, ``feeder``, ``levels``, ``planners``, ``pruning``, ``speedup``,
+    ``best``, ``quarantined``); the database at ``db_path`` gives the per-design verdicts and
+    the per-run planner numbers the figures need. Figures of an earlier report that this one
+    does not draw (no best designs yet) are removed, so the page and the directory agree. The
+    HTML is written to a temporary file and renamed, so a browser refreshing the page while a
+    sweep reports never sees half of it.
+    """
+    out_dir = Path(out_dir)
+    figures_dir = out_dir / "figures"
+    figures_dir.mkdir(parents=True, exist_ok=True)
+    ladder = [str(level) for level in summary.get("ladder") or []]
+    data = _read_db(db_path)
+
+    figures: dict[str, Path] = {}
+    figures["survivors"] = survivors_figure(summary, figures_dir / "survivors.png")
+    figures["feasible_set"] = feasible_set_figure(
+        summary, ladder, data, figures_dir / "feasible_set.png"
+    )
+    figures["planners"] = planners_figure(summary, ladder, data, figures_dir / "planners.png")
+    figures["pruning"] = pruning_figure(summary, ladder, figures_dir / "pruning.png")
+    best = list(summary.get("best") or [])
+    if best:
+        figures["best_designs"] = best_figure(summary, best, figures_dir / "best_designs.png")
+    for name in FIGURES:
+        stale = figures_dir / f"{name}.png"
+        if name not in figures and stale.exists():
+            stale.unlink()
+
+    page = out_dir / "report.html"
+    partial = out_dir / "report.html.partial"
+    partial.write_text(html_page(summary, ladder, figures, Path(db_path)), encoding="utf-8")
+    os.replace(partial, page)
+    return page
+
+
+def _read_db(db_path: str | Path) -> dict[str, Any]:
+    """What the figures need from the database: design values, verdicts and planner runs.
+
+    Returns ``ids`` (design ids, ascending), ``values`` (array (n, 12), order of
+    ``PARAMETER_NAMES``), ``status`` ((design_id, level) -> status) and ``runs`` (rows with
+    level, planner, time_s, tree_size). Read-only, so a running sweep is not disturbed.
+    """
+    columns = ", ".join(PARAMETER_NAMES)
+    with closing(connect(db_path, readonly=True)) as db:
+        designs = db.execute(
+            f"SELECT design_id, {columns} FROM designs ORDER BY design_id"
+        ).fetchall()
+        status = {
+            (int(r["design_id"]), str(r["level"])): str(r["status"])
+            for r in db.execute("SELECT design_id, level, status FROM evaluations")
+        }
+        runs = [
+            dict(r)
+            for r in db.execute(
+                "SELECT level, planner, time_s, tree_size FROM runs "
+                "ORDER BY level, planner, design_id, orientation, run"
+            )
+        ]
+    values = np.array(
+        [[float(r[name]) for name in PARAMETER_NAMES] for r in designs], dtype=float
+    ).reshape(-1, len(PARAMETER_NAMES))
+    return {
+        "ids": [int(r["design_id"]) for r in designs],
+        "values": values,
+        "status": status,
+        "runs": runs,
+    }

@@ -1,0 +1,259 @@
+"""The HTML page of a sweep's report: the summary's numbers as tables, each section followed
+by its figure. Every cell is escaped; a missing number is a dash. No scripts, no network: the
+page and its ``figures/`` directory are the whole report.
+"""
+
+from __future__ import annotations
+
+import html
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from experiments.sweep.report_figures import DASH, MAX_BEST_DRAWN, cell, number
+from feeders.design import PARAMETER_NAMES
+
+_STYLE = """
+body { font-family: sans-serif; margin: 2em; max-width: 1200px; color: #222; }
+table { border-collapse: collapse; margin: 0.5em 0 1.5em 0; font-size: 0.9em; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
+th { background: #f0f0f0; }
+td.text { text-align: left; }
+img { max-width: 100%; border: 1px solid #eee; margin: 0.5em 0; }
+p.note { color: #666; }
+"""
+
+
+def _interval(ci: Any, spec: str = ".2f") -> str:
+    if not isinstance(ci, (list, tuple)) or len(ci) != 2:
+        return DASH
+    low, high = number(ci[0]), number(ci[1])
+    if low is None or high is None:
+        return DASH
+    return f"[{format(low, spec)}, {format(high, spec)}]"
+
+
+def _table(headers: Sequence[str], rows: list[list[str]], text_columns: Sequence[int] = ()) -> str:
+    """An HTML table; every cell is escaped here (callers pass plain text)."""
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
+    body = []
+    for row in rows:
+        cells = "".join(
+            f'<td class="text">{html.escape(c)}</td>'
+            if k in text_columns
+            else f"<td>{html.escape(c)}</td>"
+            for k, c in enumerate(row)
+        )
+        body.append(f"<tr>{cells}</tr>")
+    return f"<table>\n<tr>{head}</tr>\n" + "\n".join(body) + "\n</table>"
+
+
+def _figure(figures: dict[str, Path], name: str, alt: str) -> str:
+    if name not in figures:
+        return ""
+    src = f"figures/{figures[name].name}"
+    return f'<p><img src="{html.escape(src)}" alt="{html.escape(alt)}"></p>'
+
+
+def _speedup_text(speedup: dict | None) -> str:
+    if not speedup:
+        return "Not measured (no holdout, or no holdout design evaluated at every level yet)."
+    ladder_cost = number(speedup.get("ladder_cost_s"))
+    dynamic_cost = number(speedup.get("dynamic_cost_s"))
+    factor = number(speedup.get("speedup"))
+    return (
+        f"The ladder cost {cell(ladder_cost)} s of worker time; evaluating every design at "
+        f"{speedup.get('top_level') or 'the top level'} alone would cost about "
+        f"{cell(dynamic_cost)} s (95% CI {_interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
+        f"a speed-up of {cell(factor)}x (95% CI {_interval(speedup.get('speedup_ci'), '.3g')}), "
+        f"estimated on {cell(speedup.get('holdout_n'))} holdout designs."
+    )
+
+
+def _pruning_table(rows: list[dict]) -> str:
+    return _table(
+        ["level", "n", "tp", "fp", "fn", "tn", "precision", "95% CI", "recall", "95% CI"],
+        [
+            [
+                str(row.get("level", "")),
+                *(cell(row.get(k)) for k in ("n", "tp", "fp", "fn", "tn")),
+                cell(row.get("precision"), ".3f"),
+                _interval(row.get("precision_ci")),
+                cell(row.get("recall"), ".3f"),
+                _interval(row.get("recall_ci")),
+            ]
+            for row in rows
+        ],
+        text_columns=(0,),
+    )
+
+
+def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_path: Path) -> str:
+    """The page: summary numbers as tables, each section followed by its figure."""
+    e = html.escape
+    name = str(summary.get("name", "sweep"))
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en">',
+        "<head>",
+        '<meta charset="utf-8">',
+        f"<title>Sweep report: {e(name)}</title>",
+        f"<style>{_STYLE}</style>",
+        "</head>",
+        "<body>",
+        f"<h1>Sweep report: {e(name)}</h1>",
+        "<p>"
+        f"Results key <code>{e(str(summary.get('results_key', '')))}</code>; "
+        f"{e(cell(summary.get('designs')))} Halton designs, "
+        f"{e(cell(summary.get('holdout')))} in the holdout; ladder: "
+        f"{e(' → '.join(ladder) or DASH)}.<br>"
+        f"Database <code>{e(db_path.name)}</code>; report written {e(time.ctime())}."
+        "</p>",
+    ]
+
+    parts.append("<h2>Levels</h2>")
+    level_rows = [
+        [
+            str(row.get("level", "")),
+            cell(row.get("rung")),
+            cell(row.get("evaluated")),
+            cell(row.get("feasible")),
+            cell(row.get("infeasible")),
+            cell(row.get("degenerate")),
+            cell(row.get("quarantined")),
+            cell(row.get("survivors")),
+            cell(row.get("wall_time_s"), ".4g"),
+            cell(row.get("median_wall_time_s"), ".3g"),
+            cell(row.get("designs_per_s"), ".3g"),
+        ]
+        for row in summary.get("levels") or []
+    ]
+    parts.append(
+        _table(
+            [
+                "level",
+                "rung",
+                "evaluated",
+                "feasible",
+                "infeasible",
+                "degenerate",
+                "quarantined",
+                "survivors",
+                "wall time (s)",
+                "median wall time (s)",
+                "designs/s",
+            ],
+            level_rows,
+            text_columns=(0,),
+        )
+    )
+    parts.append(
+        '<p class="note">Survivors: designs that passed this level and every level below it. '
+        "Wall time: the sum over the level's evaluations, in their workers.</p>"
+    )
+    parts.append(_figure(figures, "survivors", "survivors per level"))
+
+    parts.append("<h2>Speed-up of the ladder</h2>")
+    parts.append(f"<p>{e(_speedup_text(summary.get('speedup')))}</p>")
+
+    parts.append("<h2>Pruning (vs the top level, on the holdout)</h2>")
+    pruning = list(summary.get("pruning") or [])
+    if pruning:
+        parts.append("<p>Each lower level's own verdict against the top level's:</p>")
+        parts.append(_pruning_table(pruning))
+    else:
+        parts.append("<p>No holdout designs: the pruning is not measured.</p>")
+    cumulative = list(summary.get("ladder_pruning") or [])  # optional: the ladder so far
+    if cumulative:
+        parts.append(
+            "<p>The ladder up to each level (passed it and every level below it) against the "
+            "top level's verdict:</p>"
+        )
+        parts.append(_pruning_table(cumulative))
+    parts.append(_figure(figures, "pruning", "precision and recall per level"))
+
+    parts.append("<h2>Planners</h2>")
+    planner_rows = [
+        [
+            str(row.get("level", "")),
+            str(row.get("planner", "")),
+            cell(row.get("runs")),
+            cell(row.get("solved")),
+            cell(row.get("solved_fraction"), ".3f"),
+            cell(row.get("median_time_s"), ".3g"),
+            cell(row.get("median_tree_size"), ".4g"),
+        ]
+        for row in summary.get("planners") or []
+    ]
+    if planner_rows:
+        parts.append(
+            _table(
+                [
+                    "level",
+                    "planner",
+                    "runs",
+                    "solved",
+                    "solved fraction",
+                    "median time (s)",
+                    "median tree size",
+                ],
+                planner_rows,
+                text_columns=(0, 1),
+            )
+        )
+    else:
+        parts.append("<p>No planner runs yet.</p>")
+    parts.append(_figure(figures, "planners", "planner comparison per level"))
+
+    parts.append("<h2>Feasible set in design space</h2>")
+    parts.append(
+        '<p class="note">Every design of the database, coloured by the highest level it passed '
+        "together with every level below it (as the paper's Fig. 2, Z<sub>F</sub>).</p>"
+    )
+    parts.append(_figure(figures, "feasible_set", "feasible set: scatter matrix of the design"))
+
+    parts.append("<h2>Best designs</h2>")
+    best = list(summary.get("best") or [])
+    if best:
+        parts.append(
+            _table(
+                ["design", "exit time (s)", *PARAMETER_NAMES],
+                [
+                    [
+                        cell(row.get("design_id")),
+                        cell(row.get("exit_time_s"), ".3f"),
+                        *(cell(v, ".4g") for v in (row.get("values") or [])),
+                    ]
+                    for row in best
+                ],
+            )
+        )
+        if len(best) > MAX_BEST_DRAWN:
+            parts.append(f'<p class="note">The first {MAX_BEST_DRAWN} are drawn.</p>')
+    else:
+        parts.append("<p>No design has an exit time yet.</p>")
+    parts.append(_figure(figures, "best_designs", "drawings of the best designs"))
+
+    parts.append("<h2>Quarantined</h2>")
+    quarantined = list(summary.get("quarantined") or [])
+    if quarantined:
+        parts.append(
+            _table(
+                ["design", "level", "attempts", "reason"],
+                [
+                    [
+                        cell(row.get("design_id")),
+                        str(row.get("level", "")),
+                        cell(row.get("attempts")),
+                        str(row.get("reason", "")),
+                    ]
+                    for row in quarantined
+                ],
+                text_columns=(1, 3),
+            )
+        )
+    else:
+        parts.append("<p>None: no worker died on a design.</p>")
+    parts += ["</body>", "</html>", ""]
+    return "\n".join(p for p in parts if p)

@@ -1,0 +1,202 @@
+"""The main job, end to end: a tiny sweep up the ladder on each executor, resume after
+SIGKILL, a design that kills its worker, OMPL's database.
+
+The tiny sweep's budgets are counts of propagations, so its results do not depend on the
+machine, its load or the executor: the reference for every comparison below is an
+uninterrupted run of the same config on the local executor.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from sweep_fixtures import (
+    CRASHING_DESIGN,
+    crash_on_one_design,
+    machine_independent_rows,
+    tiny_config,
+)
+
+from experiments.sweep.ladder import export_ompl, holdout_ids, pending_jobs, run_sweep
+from experiments.sweep.summary import summarise
+from feeders.design import PARAMETER_NAMES
+from feeders.halton import halton_points
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> Path:
+    """An uninterrupted run of the tiny config on the local executor."""
+    out = tmp_path_factory.mktemp("reference")
+    run_sweep(tiny_config(), out)
+    return out
+
+
+def test_every_design_is_tried_at_the_first_rung_and_only_survivors_or_holdout_go_up(
+    reference: Path,
+) -> None:
+    config = tiny_config()
+    holdout = holdout_ids(config.count, config.holdout_fraction, config.holdout_seed)
+    db = sqlite3.connect(reference / "results.sqlite")
+    status = {
+        (d, lv): s for d, lv, s in db.execute("SELECT design_id, level, status FROM evaluations")
+    }
+    levels = [r.level for r in config.ladder]
+    assert {d for d, lv in status if lv == levels[0]} == set(range(config.count))
+    for below, above in itertools.pairwise(levels):
+        climbed = {d for d, lv in status if lv == above}
+        expected = {
+            d for (d, lv), s in status.items() if lv == below and (s == "feasible" or d in holdout)
+        }
+        assert climbed == expected
+    # the stored designs are the seeded Halton points, in order
+    values = db.execute(
+        f"SELECT {', '.join(PARAMETER_NAMES)} FROM designs ORDER BY design_id"
+    ).fetchall()
+    np.testing.assert_allclose(np.array(values), halton_points(config.count, config.seed))
+
+
+def test_a_feasible_design_solved_both_entries_exactly(reference: Path) -> None:
+    db = sqlite3.connect(reference / "results.sqlite")
+    rows = db.execute(
+        "SELECT design_id, level, status, heavy_leading, heavy_trailing FROM evaluations"
+    ).fetchall()
+    assert rows
+    for design_id, level, status, leading, trailing in rows:
+        solved = {
+            o: bool(
+                db.execute(
+                    "SELECT MAX(solved) FROM runs WHERE design_id=? AND level=? AND orientation=?",
+                    (design_id, level, o),
+                ).fetchone()[0]
+            )
+            for o in ("heavy_leading", "heavy_trailing")
+        }
+        if status == "feasible":
+            assert leading == 1 and trailing == 1 and all(solved.values())
+        elif status == "infeasible":
+            assert leading == 0 or trailing == 0
+            assert not all(solved.values())
+
+
+def test_the_ompl_database_opens_with_ompls_reader_and_has_the_design_parameters(
+    reference: Path, tmp_path: Path
+) -> None:
+    target = export_ompl(reference / "results.sqlite", tmp_path / "ompl")
+    db = sqlite3.connect(target)
+    columns = [c[1] for c in db.execute("PRAGMA table_info(experiments)")]
+    for name in (*PARAMETER_NAMES, "level", "orientation", "design_id", "seed"):
+        assert name in columns
+    results = sqlite3.connect(reference / "results.sqlite")
+    n_logs = results.execute("SELECT COUNT(*) FROM ompl_logs").fetchone()[0]
+    assert db.execute("SELECT COUNT(*) FROM experiments").fetchone()[0] == n_logs
+    # the parameters in OMPL's table are the stored designs'
+    for design_id, a, theta in db.execute("SELECT design_id, a, theta FROM experiments"):
+        stored = results.execute(
+            "SELECT a, theta FROM designs WHERE design_id=?", (design_id,)
+        ).fetchone()
+        assert (a, theta) == pytest.approx(stored)
+    # our own run properties became columns of OMPL's runs, and agree with our runs table
+    run_columns = [c[1] for c in db.execute("PRAGMA table_info(runs)")]
+    for name in ("exact_solution", "propagations", "validity_checks", "exit_time"):
+        assert name in run_columns
+    ours = results.execute("SELECT SUM(propagations), SUM(solved) FROM runs").fetchone()
+    theirs = db.execute("SELECT SUM(propagations), SUM(exact_solution) FROM runs").fetchone()
+    assert tuple(theirs) == tuple(ours)
+
+
+def test_the_summary_counts_add_up(reference: Path) -> None:
+    summary = summarise(reference / "results.sqlite")
+    assert summary["designs"] == 6 and summary["holdout"] == 3
+    first = summary["levels"][0]
+    assert first["evaluated"] == 6
+    assert first["feasible"] + first["infeasible"] + first["degenerate"] == 6
+    survivors = [lv["survivors"] for lv in summary["levels"]]
+    assert survivors == sorted(survivors, reverse=True)
+    for p in summary["pruning"]:
+        assert p["tp"] + p["fp"] + p["fn"] + p["tn"] == p["n"]
+
+
+def test_a_second_start_runs_nothing_and_duplicates_nothing(
+    reference: Path, tmp_path: Path
+) -> None:
+    config = tiny_config()
+    db = sqlite3.connect(reference / "results.sqlite")
+    done = {
+        (d, lv): s for d, lv, s in db.execute("SELECT design_id, level, status FROM evaluations")
+    }
+    designs = {i: list(v) for i, v in enumerate(halton_points(config.count, config.seed))}
+    holdout = holdout_ids(config.count, config.holdout_fraction, config.holdout_seed)
+    assert pending_jobs(config, designs, holdout, done) == []
+
+
+def test_a_sweep_killed_with_sigkill_resumes_to_the_rows_of_an_uninterrupted_run(
+    reference: Path, tmp_path: Path
+) -> None:
+    config_file = tmp_path / "tiny.yaml"
+    config_file.write_text(yaml.safe_dump(tiny_config().to_dict()))
+    out = tmp_path / "sweep"
+    command = [sys.executable, "-m", "experiments.cli", "run", str(config_file), "--out", str(out)]
+    command += ["--no-report", "--quiet"]
+    process = subprocess.Popen(
+        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+    )
+    results = out / "results.sqlite"
+    deadline = time.monotonic() + 120
+    stored = 0
+    while time.monotonic() < deadline and process.poll() is None:
+        if results.exists():
+            try:
+                with sqlite3.connect(results, timeout=1) as db:
+                    stored = db.execute("SELECT COUNT(*) FROM evaluations").fetchone()[0]
+            except sqlite3.OperationalError:
+                stored = 0
+            if stored >= 3:
+                break
+        time.sleep(0.05)
+    assert process.poll() is None, "the sweep ended before it could be killed"
+    os.killpg(process.pid, signal.SIGKILL)  # the main process and its workers, mid-run
+    process.wait()
+    total = len(machine_independent_rows(reference / "results.sqlite")["evaluations"])
+    assert 3 <= stored < total
+    again = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert machine_independent_rows(results) == machine_independent_rows(
+        reference / "results.sqlite"
+    )
+
+
+def test_a_design_that_kills_its_worker_every_time_is_quarantined_and_the_sweep_completes(
+    reference: Path, tmp_path: Path
+) -> None:
+    run_sweep(tiny_config(), tmp_path, evaluate=crash_on_one_design)
+    db = sqlite3.connect(tmp_path / "results.sqlite")
+    quarantined = db.execute("SELECT design_id, level, attempts, reason FROM quarantine").fetchall()
+    assert [(d, lv) for d, lv, _, _ in quarantined] == [(CRASHING_DESIGN, "geometric")]
+    assert quarantined[0][2] == 2 and "SIGKILL" in quarantined[0][3]
+    # every other design has exactly the results of the run where nothing crashed
+    got = machine_independent_rows(tmp_path / "results.sqlite")
+    want = machine_independent_rows(reference / "results.sqlite")
+    for table in ("evaluations", "runs"):
+        assert got[table] == [r for r in want[table] if r[0] != CRASHING_DESIGN]
+
+
+def test_the_dask_executor_gives_the_results_of_the_local_one(
+    reference: Path, tmp_path: Path
+) -> None:
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
+        run_sweep(tiny_config(), tmp_path, executor="dask", scheduler=cluster.scheduler_address)
+    got = machine_independent_rows(tmp_path / "results.sqlite")
+    assert got == machine_independent_rows(reference / "results.sqlite")
