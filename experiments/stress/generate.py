@@ -24,10 +24,12 @@ import math
 from typing import Any
 
 import numpy as np
+import shapely
 
 from experiments.stress.case import Case
 from experiments.stress.measures import Solid, union_of
 from experiments.stress.placement import (
+    Pose,
     boundary_anchors,
     flush_yaw,
     free_pose,
@@ -41,6 +43,7 @@ from experiments.stress.scenes import BOUNDS, FREE_FORM, ISSUE_POST, Obstacles, 
 from feeders.feeder import ORIENTATIONS
 from feeders.halton import halton_designs
 from feeders.part import Peg
+from feeders.scene import wrap_angle
 from feeders.scene_yaml import SceneError, scene_from_dict
 
 FAMILIES = ("feeder", *FREE_FORM)
@@ -111,6 +114,11 @@ def _anchor(rng: np.random.Generator, solid: Solid, draw: Obstacles, corner: boo
     return a + rng.uniform() * (b - a), normal
 
 
+def _centre_in(solid: Solid, pose: Pose) -> bool:
+    """The centre of mass inside the solid: a slide that ended through a wall, not at it."""
+    return bool(shapely.contains_xy(solid.union, pose[0], pose[1]))
+
+
 def _target(rng: np.random.Generator, placement: str) -> float:
     if placement == "overlap":
         return -float(rng.uniform(0.0, OVERLAP_DEPTH))
@@ -137,7 +145,7 @@ def _contact_pose(rng, solid, draw, peg, placement, bounds):
             start = (start[0] + shift[0], start[1] + shift[1], yaw)
         target = _target(rng, placement)
         pose = slide_to(solid, peg, start, normal, target)
-        if pose is not None and in_bounds(pose, bounds):
+        if pose is not None and in_bounds(pose, bounds) and not _centre_in(solid, pose):
             return pose, normal
     return None
 
@@ -260,7 +268,8 @@ def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
         pose = free_pose(rng, solid, peg, bounds, 0.05)
         if pose is None:
             raise RuntimeError(f"case {index} of seed {seed}: no free pose in {family}")
-    pose = (float(pose[0]), float(pose[1]), float(pose[2]))  # plain floats: YAML-ready
+    # plain floats (YAML-ready), the yaw within the scene reader's range
+    pose = (float(pose[0]), float(pose[1]), wrap_angle(float(pose[2])))
     velocity, control, inputs = _velocity(rng, level, toward, peg, placement)
     env["inputs"] = inputs
     if family == "feeder":

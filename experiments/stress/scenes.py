@@ -67,12 +67,17 @@ def convex(rng: np.random.Generator) -> Obstacles:
 def nonconvex(rng: np.random.Generator) -> Obstacles:
     """The floor and a random star-shaped polygon with reflex corners (the scene reader splits
     it into convex pieces)."""
-    n = int(rng.integers(5, 13))
-    gap = 0.05  # radians between neighbours at least: strictly increasing, a simple polygon
-    angles = np.sort(rng.uniform(0.0, 2.0 * math.pi - n * gap, n)) + np.arange(n) * gap
-    radii = rng.uniform(0.4, 1.8, n)
-    centre = (rng.uniform(-3.0, 3.0), rng.uniform(0.5, 3.0))
-    star = np.column_stack([centre[0] + radii * np.cos(angles), centre[1] + radii * np.sin(angles)])
+    while True:  # a gap of more than pi between neighbours can make the ring cross itself
+        n = int(rng.integers(5, 13))
+        gap = 0.05  # radians between neighbours at least: strictly increasing angles
+        angles = np.sort(rng.uniform(0.0, 2.0 * math.pi - n * gap, n)) + np.arange(n) * gap
+        radii = rng.uniform(0.4, 1.8, n)
+        centre = (rng.uniform(-3.0, 3.0), rng.uniform(0.5, 3.0))
+        star = np.column_stack(
+            [centre[0] + radii * np.cos(angles), centre[1] + radii * np.sin(angles)]
+        )
+        if shapely.Polygon(star).is_valid:
+            break
     return Obstacles([FLOOR, _round(star)])
 
 
