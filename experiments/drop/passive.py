@@ -95,7 +95,7 @@ def passive_drop(
         rest_time=REST_TIME,
     )
     wall = time.perf_counter() - t0
-    final = run.final
+    final = run.states[run.settle_index]  # q(T): where it came to rest, or the end
     pose = (float(final[0]), float(final[1]), wrap_angle(float(final[2])))
     energy = run.energy()
     s = run.summary
@@ -104,7 +104,7 @@ def passive_drop(
         orientation=orientation,
         success=scene.goal.contains(pose),
         end=run.end,
-        T=run.duration,
+        T=float(run.times[run.settle_index]),
         final_pose=pose,
         goal_error=goal_error(scene, pose),
         max_penetration=s["max_penetration"],
