@@ -35,10 +35,17 @@ def _part_at(scene: Scene, pose: tuple[float, float, float]) -> np.ndarray:
     return scene.part.body_vertices() @ np.array([[c, s], [-s, c]]) + np.array(pose[:2])
 
 
+INSCRIBED_TOLERANCE = 1e-4
+"""Tolerance (length) of shapely's maximum inscribed circle in :func:`overlap_depth`: the disc
+it finds lies inside the overlap whatever the tolerance, so its radius stays a lower bound."""
+
+
 def overlap_depth(solid: shapely.Geometry, corners: np.ndarray) -> float:
     """How deep the convex polygon ``corners (n, 2)`` overlaps ``solid`` (length, 0 when
     apart): the deepest of its corners inside the solid and of the solid's boundary points
-    inside it, by distance to the other's boundary."""
+    inside it, by distance to the other's boundary, and the radius of the largest disc inside
+    the overlap (the part cannot leave a disc it holds by a shorter move: this sees a thin wall
+    through the middle of the part, where the corners read little or nothing)."""
     if solid.is_empty:
         return 0.0
     part = shapely.Polygon(corners)
@@ -52,6 +59,9 @@ def overlap_depth(solid: shapely.Geometry, corners: np.ndarray) -> float:
     inside = part.intersection(solid.boundary)
     for x, y in shapely.get_coordinates(inside):
         depth = max(depth, part.exterior.distance(shapely.Point(x, y)))
+    overlap = shapely.buffer(part.intersection(solid), 0.0)  # its polygons only
+    if overlap.area > INSCRIBED_TOLERANCE**2:
+        depth = max(depth, shapely.maximum_inscribed_circle(overlap, INSCRIBED_TOLERANCE).length)
     return float(depth)
 
 

@@ -9,7 +9,9 @@ each one close at most its gap in a step.
 The part and the polygons are convex, so two of them first touch vertex-to-edge (or
 vertex-to-vertex): the candidates are each part corner against each nearby polygon, each
 polygon corner against the part (skipped when its nearest point on the part is a part corner,
-which the first pass already reports), and each disc centre against the part. Signed distances
+which the first pass already reports), and each disc centre against the part. A part corner
+strictly inside the solid is one contact with its depth in the whole solid (the distance to the
+nearest surface segment, :func:`solid_depth`), not one per piece it lies in. Signed distances
 use the same separating-axis rule as :mod:`validity.geometry_kernel`, so both levels agree on
 what penetrates. Arrays in, numbers out; compiled with numba.
 """
@@ -167,6 +169,91 @@ def corner_vertices(verts: np.ndarray, counts: np.ndarray, surface: np.ndarray) 
 
 
 @njit(cache=True)
+def _strictly_inside(verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, px, py) -> bool:
+    """p strictly inside (by more than round-off) one of the polygons."""
+    for q in range(verts.shape[0]):
+        box = aabbs[q]
+        if px <= box[0] or py <= box[1] or px >= box[2] or py >= box[3]:
+            continue
+        b, nb = verts[q], counts[q]
+        inner = -np.inf
+        for i in range(nb):
+            nx, ny, ok = _edge_normal(b, i, nb)
+            if ok:
+                inner = max(inner, nx * (px - b[i, 0]) + ny * (py - b[i, 1]))
+        if inner < -_TINY:
+            return True
+    return False
+
+
+@njit(cache=True)
+def solid_depth(
+    px: float,
+    py: float,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    surface: np.ndarray,
+    circles: np.ndarray,
+) -> tuple[float, float, float]:
+    """``(depth, nx, ny)`` of a point p inside the solid: its distance to the nearest point c
+    of the solid's surface (every surface sub-edge of :mod:`validity.solid_surface` as a
+    segment, and each disc's circle where its point nearest p is not inside another piece:
+    together they are the boundary of the union) and the unit normal (c - p) / |c - p| that
+    pushes p out. The depth in the whole solid, not in the one piece p lies in: a corner
+    inside one piece next to a seam is nearest the surface of the piece beyond the seam, and
+    the nearest surface line of its own piece may be far (stress case 0/1682) or face into
+    the neighbour."""
+    best, nx, ny = np.inf, 0.0, 0.0
+    for q in range(verts.shape[0]):
+        box = aabbs[q]
+        gx = max(box[0] - px, 0.0, px - box[2])
+        gy = max(box[1] - py, 0.0, py - box[3])
+        if math.hypot(gx, gy) >= best:
+            continue
+        b, nb = verts[q], counts[q]
+        for i in range(nb):
+            if not surface[q, i]:
+                continue
+            j = (i + 1) % nb
+            ax, ay = b[i, 0], b[i, 1]
+            ex, ey = b[j, 0] - ax, b[j, 1] - ay
+            ll = ex * ex + ey * ey
+            t = 0.0
+            if ll > _TINY:
+                t = min(1.0, max(0.0, ((px - ax) * ex + (py - ay) * ey) / ll))
+            cx, cy = ax + t * ex - px, ay + t * ey - py
+            d = math.hypot(cx, cy)
+            if d < best:
+                best = d
+                if 0.0 < t < 1.0 or d <= _TINY:  # the edge's outward normal: exact at any depth
+                    nx, ny, _ = _edge_normal(b, i, nb)
+                else:  # nearest a corner of the surface: out towards it
+                    nx, ny = cx / d, cy / d
+    for q in range(circles.shape[0]):
+        ox, oy, r = circles[q, 0], circles[q, 1], circles[q, 2]
+        dx, dy = px - ox, py - oy
+        dist = math.hypot(dx, dy)
+        if dist <= _TINY or abs(r - dist) >= best:
+            continue
+        cx, cy = ox + r * dx / dist, oy + r * dy / dist
+        if _strictly_inside(verts, counts, aabbs, cx, cy) or _in_other_disc(circles, q, cx, cy):
+            continue
+        best = abs(r - dist)
+        sign = 1.0 if dist < r else -1.0  # inside the disc: out along the radius
+        nx, ny = sign * dx / dist, sign * dy / dist
+    return best, nx, ny
+
+
+@njit(cache=True)
+def _in_other_disc(circles: np.ndarray, skip: int, px: float, py: float) -> bool:
+    for q in range(circles.shape[0]):
+        if q != skip and math.hypot(px - circles[q, 0], py - circles[q, 1]) < circles[q, 2] - _TINY:
+            return True
+    return False
+
+
+@njit(cache=True)
 def find_contacts(
     world: np.ndarray,
     verts: np.ndarray,
@@ -193,6 +280,15 @@ def find_contacts(
     x0, y0, x1, y1 = _box_of(world)
     nc = 0
     clear = np.inf
+    buried = np.zeros(n, dtype=np.bool_)
+    for k in range(n):
+        if _strictly_inside(verts, counts, aabbs, world[k, 0], world[k, 1]):
+            buried[k] = True
+            depth, nx, ny = solid_depth(
+                world[k, 0], world[k, 1], verts, counts, aabbs, surface, circles
+            )
+            if depth < np.inf:
+                nc = _add(contacts, nc, -depth, nx, ny, world[k, 0], world[k, 1])
     for p in range(verts.shape[0]):
         gap = _box_gap(x0, y0, x1, y1, aabbs[p])
         if gap >= margin:
@@ -201,6 +297,8 @@ def find_contacts(
         b, nb = verts[p], counts[p]
         nearest = np.inf
         for k in range(n):
+            if buried[k]:
+                continue
             d, nx, ny, _, _, _, hidden = point_polygon_feature(
                 world[k, 0], world[k, 1], b, nb, margin, surface[p], corners[p]
             )

@@ -25,7 +25,7 @@ from validity.stewart_trinkle import (
 
 DEFAULT_STEP = 1e-3  # h (s): first-order error a T h / 2 (about 1 mm over 1 s of sliding)
 DEFAULT_MARGIN = 0.005  # contacts closer than this (+ 2 h |speed|) enter the LCP (length)
-PUSH_CAP = 0.5  # largest speed (length/s) at which psi_n / h pushes out a penetration
+PUSH_CAP = 0.5  # fastest (length/s) a pose correction moves any point of the part out of an overlap
 VELOCITY_LIMIT = 20.0  # |vx|, |vy| (length/s) and |omega| (rad/s) of a valid state
 PENETRATION_TOLERANCE = 0.01  # deepest overlap (length) a valid dynamic state may have
 

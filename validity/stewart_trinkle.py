@@ -7,11 +7,21 @@ mass matrix M = diag(m, m, I). Each step of length h:
    psi_n, normals n, tangents t and points p, giving the Jacobian columns
    W_n = (n, r x n) and W_f = (+t, r x t), (-t, -(r x t)) with r = p - q_xy (two friction
    directions per contact: the planar friction cone is exact);
-2. solve LCP(B, b) of Eq. 7 for z = (p_n, p_f, s):
+2. when a contact penetrates deeper than ``CORRECTION_SLOP``, correct the pose, not the
+   velocity (post-stabilisation, Cline & Pai 2003; Bullet's split impulse): the smallest
+   displacement in the metric M, dq = M^-1 W_n l, with W_n' dq + psi_n >= 0 (a frictionless
+   LCP in l), scaled so no point of the part moves more than c h (c the push-out cap, a
+   speed); q <- q + dq and psi_n <- psi_n + W_n' dq;
+3. solve LCP(B, b) of Eq. 7 for z = (p_n, p_f, s):
    B = [[W_n' M^-1 W_n, W_n' M^-1 W_f, 0], [W_f' M^-1 W_n, W_f' M^-1 W_f, E], [U, -E', 0]],
-   b = (W_n' v* + max(psi_n / h, -c), W_f' v*, 0) with v* = v + h M^-1 (m g + u),
-   where c caps the velocity at which an existing penetration is pushed out;
-3. v <- v* + M^-1 (W_n p_n + W_f p_f), q <- q + h v (no restitution, as in the paper).
+   b = (W_n' v* + max(psi_n, 0) / h, W_f' v*, 0) with v* = v + h M^-1 (m g + u);
+4. v <- v* + M^-1 (W_n p_n + W_f p_f), q <- q + h v (no restitution, as in the paper).
+
+Step 2 replaces the paper's psi_n / h for psi_n < 0, which pushes an overlap out through the
+velocity: that adds kinetic energy, and a part wedged between two walls whose contacts cannot
+both separate by translation was spun up to hundreds of rad/s by it (stress case 0/2606). A
+pose correction adds none (only the potential energy of the lift, at most m |g| depth), and the
+velocity LCP then asks of an overlapping contact only that it does not approach.
 
 What a step does not need it skips: no contact within the margin means no LCP (a free step of
 the same update), and then as many following steps as provably cannot bring a contact within
@@ -44,7 +54,7 @@ from validity.contact_lcp import (
     solve_with_fallback,
 )
 from validity.geometry_kernel import pose_vertices
-from validity.lcp import LCP_REGULARISED, solve_from_basis
+from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_from_basis, solve_lcp
 
 # Per-step telemetry columns.
 T_CONTACTS, T_STATUS, T_PIVOTS, T_ALPHA, T_RESIDUAL, T_PENETRATION, T_SIZE = range(7)
@@ -58,6 +68,9 @@ TELEMETRY_COLUMNS = (
     "lcp_size",
 )
 NO_LCP = -1  # T_STATUS of a step without contacts
+CORRECTION_SLOP = (
+    1e-7  # deepest overlap (length) left to the velocity LCP without a pose correction
+)
 WARM = 9  # T_STATUS: the previous step's basis, verified, solved the LCP without pivoting
 # T_STATUS also takes validity.contact_lcp's FALLBACK_FRICTIONLESS (the friction LCP failed,
 # the frictionless one held) and FAILED (no LCP could be solved; no contact impulse).
@@ -76,7 +89,9 @@ WARM = 9  # T_STATUS: the previous step's basis, verified, solved the LCP withou
     S_MAX_PENETRATION,
     S_CONTACT_STEPS,
     S_WARM,
-) = range(12)
+    S_CORRECTIONS,
+    S_MAX_CORRECTION,
+) = range(14)
 SUMMARY_FIELDS = (
     "steps",
     "contact_searches",
@@ -90,6 +105,8 @@ SUMMARY_FIELDS = (
     "max_penetration",
     "contact_steps",
     "warm_starts",
+    "pose_corrections",
+    "max_correction",
 )
 
 # Why a run ended.
@@ -117,11 +134,48 @@ def _free_steps_bound(clear, margin0, h, speed, accel, radius, remaining):
     while j < remaining:
         k = j + 1
         moved = k * h * speed + h * h * accel * k * (k + 1) / 2.0
-        margin = margin0 + 2.0 * h * (speed + k * h * accel)
+        margin = margin0 + 2.0 * h * (speed + (k + 1) * h * accel)
         if moved + margin >= clear:
             break
         j = k
     return j
+
+
+@njit(cache=True)
+def pose_correction(
+    contacts: np.ndarray,
+    nc: int,
+    wn: np.ndarray,
+    wt: np.ndarray,
+    minv: np.ndarray,
+    radius: float,
+    max_move: float,
+    gap: np.ndarray,
+    cols: np.ndarray,
+    B: np.ndarray,
+    b: np.ndarray,
+    z: np.ndarray,
+    dq: np.ndarray,
+) -> bool:
+    """The pose correction dq (step 2 of the module docstring) of the contacts' gaps
+    ``contacts[:nc, 0]`` with Jacobian columns ``wn``: dq = M^-1 W_n l for the frictionless
+    LCP W_n' M^-1 W_n l + psi_n >= 0, scaled so that no point of the part (radius ``radius``
+    about the centre of mass) moves more than ``max_move``. False (dq = 0) when the LCP has no
+    solution."""
+    dq[0], dq[1], dq[2] = 0.0, 0.0, 0.0
+    for i in range(nc):
+        gap[i] = contacts[i, 0]
+    m = lcp_columns(wn, wt, nc, False, cols)
+    size = assemble_lcp(cols, m, nc, False, 0.0, minv, gap, dq, B, b)  # v* = dq = 0
+    status, _, _, _ = solve_lcp(B[:size, :size], b[:size], z[:size])
+    if status != LCP_SOLVED and status != LCP_REGULARISED:
+        return False
+    apply_lcp_impulse(cols, m, z, minv, dq)
+    move = math.hypot(dq[0], dq[1]) + radius * abs(dq[2])
+    if move > max_move:
+        scale = max_move / move
+        dq[0], dq[1], dq[2] = dq[0] * scale, dq[1] * scale, dq[2] * scale
+    return True
 
 
 @njit(cache=True)
@@ -189,6 +243,7 @@ def simulate_kernel(
     basic_size = -1
     vstar = np.empty(3)
     v = np.empty(3)
+    dq = np.empty(3)
 
     if record:
         traj[0, 0], traj[0, 1], traj[0, 2] = x, y, th
@@ -206,7 +261,7 @@ def simulate_kernel(
             vx, vy, om = vstar[0], vstar[1], vstar[2]
         else:
             speed = math.hypot(vx, vy) + radius * abs(om)
-            margin = margin0 + 2.0 * h * speed
+            margin = margin0 + 2.0 * h * (speed + h * accel)
             pose_vertices(body, x, y, th, world)
             nc, clear = find_contacts(
                 world, verts, counts, aabbs, circles, surface, corners, margin, contacts
@@ -223,7 +278,17 @@ def simulate_kernel(
                 contact_jacobians(contacts, nc, x, y, wn, wt)
                 for i in range(nc):
                     depth = max(depth, -contacts[i, 0])
-                    bias[i] = max(contacts[i, 0] / h, -push_cap)
+                if depth > CORRECTION_SLOP and pose_correction(
+                    contacts, nc, wn, wt, minv, radius, push_cap * h, bias, cols, B, b, z, dq
+                ):
+                    x, y, th = x + dq[0], y + dq[1], th + dq[2]
+                    for i in range(nc):
+                        contacts[i, 0] += wn[0, i] * dq[0] + wn[1, i] * dq[1] + wn[2, i] * dq[2]
+                    summary[S_CORRECTIONS] += 1
+                    moved = math.hypot(dq[0], dq[1]) + radius * abs(dq[2])
+                    summary[S_MAX_CORRECTION] = max(summary[S_MAX_CORRECTION], moved)
+                for i in range(nc):
+                    bias[i] = max(contacts[i, 0], 0.0) / h
                 v[0], v[1], v[2] = vstar[0], vstar[1], vstar[2]
                 frictional = mu > 0.0
                 m = lcp_columns(wn, wt, nc, frictional, cols)

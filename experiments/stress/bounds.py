@@ -22,7 +22,12 @@ below anything physical."""
 DYNAMIC_PENETRATION = 0.01
 """Dynamic level (length): validity.dynamic.PENETRATION_TOLERANCE, the deepest overlap a valid
 dynamic state may have (what a planner accepts); a part started deeper (it never is here) may
-keep its start depth."""
+keep its start depth. On top of it the largest one-step linearisation error of the run
+(:func:`experiments.stress.measures.linearisation_errors`): Eq. 7 keeps the gaps linearised at
+the start of a step non-negative, and a corner that turns by dtheta or slides d along a disc
+of radius r ends up to R dtheta^2 / 2 + d^2 / (2 r) deeper than the linear gap says. Negligible
+at h = 1e-3 (about 1e-4 at 20 rad/s); at h = 5e-2 it reaches tenths of a length. The pose
+corrections keep it from adding up over steps; a run whose overlap grows beyond it fails."""
 
 KINEMATIC_ENERGY_REL = 1e-9
 """Kinematic level: every step starts at the commanded velocity u, and an impact never adds
@@ -32,30 +37,28 @@ round-off over at most MAX_IMPACTS = 32 closed-form impacts (each good to ~1e-15
 DYNAMIC_ENERGY_REL = 1e-6
 """Dynamic level: with the wrench's work subtracted, Eq. 7 stepped semi-implicitly loses
 energy in free flight (m |g|^2 h^2 / 2 per step) and at every contact (no restitution,
-Coulomb friction); its one source is the psi/h push-out of an overlap, allowed for separately
-(at most the push-out cap's kinetic energy and the lift out of the deepest overlap, see
-:func:`dynamic_energy_allowance`). 1e-6 of the case's energy scale covers the LCP's residual
-and its regularised retries."""
+Coulomb friction); an overlap is corrected in the pose, not the velocity, so its one source of
+energy is the lift of those corrections through gravity and the wrench, which is subtracted
+(measured from the states: experiments.stress.measures.correction_work).
+1e-6 of the case's energy scale covers the LCP's residual and its regularised retries."""
 
 PUSH_OUT_SLACK = 1e-9
-"""Dynamic level (length/s): a part started overlapping leaves, per step, no faster than the
-push-out cap plus what gravity and the wrench add in that step; slack for round-off."""
+"""Dynamic level (length/s): a pose correction moves no point of the part faster than the
+push-out cap; slack for round-off."""
 
 
-def penetration_allowance(level: str, start_depth: float) -> float:
-    """Deepest overlap (length) a run of ``level`` may reach from a start ``start_depth`` deep."""
+def penetration_allowance(level: str, start_depth: float, step_error: float = 0.0) -> float:
+    """Deepest overlap (length) a run of ``level`` may reach from a start ``start_depth`` deep;
+    ``step_error`` is the dynamic level's largest one-step linearisation error of the run."""
     if level == "dynamic":
-        return max(start_depth, DYNAMIC_PENETRATION) + EXACT_PENETRATION
+        return max(start_depth, DYNAMIC_PENETRATION) + step_error + EXACT_PENETRATION
     return max(start_depth, 0.0) + EXACT_PENETRATION
 
 
-def dynamic_energy_allowance(
-    mass: float, gravity: float, push_cap: float, deepest: float, scale: float
-) -> float:
-    """Energy (mass length^2/s^2) the psi/h push-out may add: the cap's kinetic energy
-    m cap^2 / 2, the lift m |g| d out of the deepest overlap d, and DYNAMIC_ENERGY_REL of the
-    case's energy ``scale``."""
-    return 0.5 * mass * push_cap**2 + mass * gravity * deepest + DYNAMIC_ENERGY_REL * scale
+def dynamic_energy_allowance(scale: float) -> float:
+    """Energy (mass length^2/s^2) a run may gain without input, once the wrench's work and the
+    pose corrections' lift are subtracted: DYNAMIC_ENERGY_REL of the case's energy ``scale``."""
+    return DYNAMIC_ENERGY_REL * scale
 
 
 def broken(record: dict) -> tuple[list[str], list[str]]:

@@ -17,16 +17,22 @@ import shapely
 
 from feeders.part import Peg
 from feeders.scene import Scene
+from feeders.scene_checks import INSCRIBED_TOLERANCE
 
 CIRCLE_SEGMENTS = 256  # a disc as a polygon of 4 * 256 sides: inscribed, so a depth read on
 # it is never more than on the true disc (off by at most r (1 - cos(pi / 1024)) < 5e-6 r)
+
+
+UNION_GRID = 1e-12
+"""Grid (length) the union is taken on: pieces meant to share an edge differ in the last bits
+of a coordinate (table3's funnel), and an exact union keeps a slit between them as boundary."""
 
 
 def union_of(polygons: Sequence[Any], circles: Sequence[Any] | np.ndarray) -> shapely.Geometry:
     """The union of simple polygons (rows [x, y]) and discs ``(cx, cy, r)``, prepared."""
     pieces = [shapely.Polygon(p) for p in polygons]
     pieces += [shapely.Point(c[0], c[1]).buffer(c[2], quad_segs=CIRCLE_SEGMENTS) for c in circles]
-    solid = shapely.union_all(pieces) if pieces else shapely.Polygon()
+    solid = shapely.union_all(pieces, grid_size=UNION_GRID) if pieces else shapely.Polygon()
     shapely.prepare(solid)
     return solid
 
@@ -66,15 +72,18 @@ def penetration_depths(solid: Solid, part: Peg, states: np.ndarray) -> np.ndarra
     The deepest of (a) the part's corners inside the union, by shapely's distance to the
     union's boundary, and (b) the union's boundary vertices inside the part, by the distance to
     the nearest side of the part's rectangle (closed form in the body frame). A square sunk 0.1
-    into a floor reads 0.1. (An overlap with no vertex of either inside the other, a wall
-    crossing the middle of the part, reads 0 here; :func:`free_components` catches a part that
-    ends on the far side of such a wall.)
+    into a floor reads 0.1. And (c) the radius of the largest disc inside the overlap region
+    (shapely's maximum inscribed circle of part and union): the part cannot leave a disc it
+    holds by a shorter move, so that radius is a lower bound on the depth, and it is what sees
+    a wall through the middle of the part, or a corner just short of the far side of a thin
+    wall, where (a) and (b) read little or nothing.
     """
     states = np.asarray(states, dtype=float).reshape(-1, states.shape[-1])
     depth = np.zeros(len(states))
     if solid.union.is_empty or len(states) == 0:
         return depth
-    corners = part_corners(part, states).reshape(-1, 2)
+    placed = part_corners(part, states)
+    corners = placed.reshape(-1, 2)
     inside = shapely.contains_xy(solid.union, corners[:, 0], corners[:, 1])
     if inside.any():
         d = np.zeros(len(corners))
@@ -91,7 +100,26 @@ def penetration_depths(solid: Solid, part: Peg, states: np.ndarray) -> np.ndarra
         bx, by = c * dx + s * dy, -s * dx + c * dy  # body frame
         inner = np.minimum(np.minimum(bx - x0, x1 - bx), np.minimum(by - y0, y1 - by))
         depth = np.maximum(depth, np.maximum(inner, 0.0).max(axis=1))
-    return depth
+    return np.maximum(depth, _held_disc(solid, placed))
+
+
+def _held_disc(solid: Solid, corners: np.ndarray) -> np.ndarray:
+    """Radius of the largest disc inside the overlap of the part (corners (S, 4, 2)) and the
+    solid at every pose (0 where they do not overlap with area)."""
+    radius = np.zeros(len(corners))
+    parts = shapely.polygons(corners)
+    touching = np.nonzero(shapely.intersects(solid.union, parts))[0]
+    if len(touching) == 0:
+        return radius
+    overlap = shapely.intersection(parts[touching], solid.union)
+    mixed = shapely.get_type_id(overlap) == shapely.GeometryType.GEOMETRYCOLLECTION
+    overlap[mixed] = shapely.buffer(overlap[mixed], 0.0)  # its polygons (drops lines, points)
+    area = shapely.area(overlap)
+    some = area > INSCRIBED_TOLERANCE**2
+    if some.any():
+        lines = shapely.maximum_inscribed_circle(overlap[some], INSCRIBED_TOLERANCE)
+        radius[touching[some]] = shapely.length(lines)
+    return radius
 
 
 def free_components(solid: Solid, bounds: tuple[float, float, float, float]) -> list:
@@ -133,6 +161,38 @@ def wrench_work(states: np.ndarray, wrench: tuple[float, float, float]) -> np.nd
     force times the displacement plus the torque times the rotation (exact for any path)."""
     d = states[:, :3] - states[0, :3]
     return wrench[0] * d[:, 0] + wrench[1] * d[:, 1] + wrench[2] * d[:, 2]
+
+
+def linearisation_errors(
+    states: np.ndarray, radius: float, disc_radius: float = np.inf
+) -> np.ndarray:
+    """Per step, how much deeper than its linearised gap a point of the part may end (length):
+    R dtheta^2 / 2 for the turn (a point at R from the centre of mass leaves its tangent line by
+    at most that) plus d^2 / (2 r) for a slide of d (the largest point displacement) along a
+    disc of radius r (the smallest disc of the scene; inf without discs). Shape (S - 1,)."""
+    turn = np.abs(np.remainder(np.diff(states[:, 2]) + np.pi, 2.0 * np.pi) - np.pi)
+    slide = np.hypot(*np.diff(states[:, :2], axis=0).T) + radius * turn
+    return radius * turn**2 / 2.0 + slide**2 / (2.0 * disc_radius)
+
+
+def pose_corrections(states: np.ndarray, h: float) -> np.ndarray:
+    """Per step, the part of the pose change its new velocity does not explain (rows dx, dy,
+    dtheta): Eq. 7 moves q' = q + h v', so anything else is a pose correction of an overlap."""
+    step = states[1:, :3] - states[:-1, :3] - h * states[1:, 3:6]
+    step[:, 2] = np.remainder(step[:, 2] + np.pi, 2.0 * np.pi) - np.pi
+    return step
+
+
+def correction_work(
+    corrections: np.ndarray, wrench: tuple[float, float, float], mass: float, gravity
+) -> np.ndarray:
+    """Energy the pose corrections may have moved the part through the field of gravity and
+    the wrench, summed from the first state to each state: sum |(f + m g) . dxy| + |tau dtheta|
+    (a correction changes the pose without work, so this is the most it can add)."""
+    fx, fy = wrench[0] + mass * gravity[0], wrench[1] + mass * gravity[1]
+    each = np.abs(fx * corrections[:, 0] + fy * corrections[:, 1])
+    each += np.abs(wrench[2] * corrections[:, 2])
+    return np.concatenate(([0.0], np.cumsum(each)))
 
 
 def kinetic_energy(velocity: np.ndarray, mass: float, inertia: float) -> np.ndarray:

@@ -24,10 +24,13 @@ from experiments.stress.case import Case
 from experiments.stress.measures import (
     Solid,
     component_of,
+    correction_work,
     free_components,
     kinetic_energy,
+    linearisation_errors,
     mechanical_energy,
     penetration_depths,
+    pose_corrections,
     wrench_work,
 )
 from feeders.scene import Scene
@@ -54,13 +57,18 @@ def _simulate(case: Case, scene: Scene) -> tuple[np.ndarray, dict[str, Any]]:
         run = level.run(case.state, case.control, case.duration, record=True)
         return run.states, {**run.summary, "end": run.end, "push_cap": 0.0}
     traj = level.simulate(case.state, case.control, case.duration)
-    return traj.states, {**traj.summary, "end": traj.end, "push_cap": level.push_cap}
+    return traj.states, {
+        **traj.summary,
+        "end": traj.end,
+        "push_cap": level.push_cap,
+        "h": traj.h,
+    }
 
 
-def _energy(
-    case: Case, scene: Scene, states: np.ndarray, deepest: float, push_cap: float
-) -> tuple[float, float]:
-    """``(gain, allowed)``: energy gained without input and the bound on it."""
+def _energy(case: Case, scene: Scene, states: np.ndarray, h: float) -> tuple[float, float]:
+    """``(gain, allowed)``: energy gained without input and the bound on it. At the dynamic
+    level the wrench's work and the most the pose corrections can have lifted the part through
+    gravity and the wrench (:func:`correction_work`) are subtracted."""
     mass, inertia = scene.part.mass, scene.part.inertia
     if case.level == "kinematic":
         commanded = float(kinetic_energy(np.array(case.control), mass, inertia)[0])
@@ -71,24 +79,23 @@ def _energy(
         return 0.0, 0.0
     g = math.hypot(*scene.gravity)
     work = wrench_work(states, case.control)
+    lift = correction_work(pose_corrections(states, h), case.control, mass, scene.gravity)
     energy = mechanical_energy(states, mass, inertia, scene.gravity)
-    gain = float(np.max(energy - energy[0] - work, initial=0.0))
+    gain = float(np.max(energy - energy[0] - work - lift, initial=0.0))
     start_kinetic = float(kinetic_energy(states[0, 3:6], mass, inertia)[0])
     scale = mass * g * scene.part.length + start_kinetic + float(np.max(np.abs(work)))
-    return gain, dynamic_energy_allowance(mass, g, push_cap, deepest, scale)
+    return gain, dynamic_energy_allowance(scale)
 
 
-def _push_out(case: Case, scene: Scene, states: np.ndarray, depths: np.ndarray) -> float:
-    """Fastest gain of speed (length/s) in a step that started overlapping, less what gravity
-    and the wrench add in a step (dynamic level; 0 otherwise)."""
+def _push_out(case: Case, scene: Scene, states: np.ndarray, h: float) -> float:
+    """Fastest speed (length/s) at which a step's pose correction (:func:`pose_corrections`)
+    moved a point of the part (dynamic level; 0 otherwise): |dx, dy| + R |dtheta| over h."""
     if case.level != "dynamic" or len(states) < 2:
         return 0.0
-    speed = np.hypot(states[:, 3], states[:, 4])
-    force = math.hypot(case.control[0], case.control[1]) / scene.part.mass
-    dt = case.duration / (len(states) - 1)
-    rise = speed[1:] - speed[:-1] - dt * (math.hypot(*scene.gravity) + force)
-    overlapping = depths[:-1] > 0.0
-    return float(np.max(rise[overlapping], initial=0.0))
+    step = pose_corrections(states, h)
+    radius = scene.part.bounding_radius()
+    move = np.hypot(step[:, 0], step[:, 1]) + radius * np.abs(step[:, 2])
+    return float(np.max(move, initial=0.0) / h)
 
 
 def record_of(case: Case) -> dict[str, Any]:
@@ -146,11 +153,14 @@ def _measure(
     depths = penetration_depths(solid, scene.part, states)
     record["start_depth"] = float(depths[0])
     record["max_depth"] = float(depths.max())
-    record["depth_allowed"] = penetration_allowance(case.level, float(depths[0]))
+    step_error = 0.0
+    if case.level == "dynamic" and len(states) > 1:
+        circles = scene.obstacles.circles
+        disc = float(circles[:, 2].min()) if len(circles) else np.inf
+        step_error = float(linearisation_errors(states, scene.part.bounding_radius(), disc).max())
+    record["depth_allowed"] = penetration_allowance(case.level, float(depths[0]), step_error)
     if case.level != "geometric":
-        gain, allowed = _energy(
-            case, scene, states, float(depths.max()), float(telemetry["push_cap"])
-        )
+        gain, allowed = _energy(case, scene, states, float(telemetry.get("h", case.h)))
         record["energy_gain"], record["energy_allowed"] = gain, allowed
         components = free_components(solid, scene.bounds)
         label = component_of(components, states)
@@ -158,5 +168,5 @@ def _measure(
         if label[0] < 0 or len(moved):
             record["crossed_step"] = int(moved[0]) if len(moved) else 0
     if case.level == "dynamic":
-        record["push_out"] = _push_out(case, scene, states, depths)
+        record["push_out"] = _push_out(case, scene, states, float(telemetry["h"]))
         record["push_out_allowed"] = float(telemetry["push_cap"]) + PUSH_OUT_SLACK

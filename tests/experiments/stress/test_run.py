@@ -46,12 +46,6 @@ def test_issue_post_drop_stays_above_the_floor(level):
 
 
 @pytest.mark.stress
-@pytest.mark.xfail(
-    strict=True,
-    reason="open fault found by this suite (issue 11): the dynamic level caps the psi/h "
-    "push-out per contact, not per part, so a part overlapping two walls leaves faster than "
-    "the cap and gains energy (3 of these 300 cases); strict: passes once it is fixed",
-)
 def test_ci_sized_run_keeps_every_hard_bound():
     """300 cases of seed 0 over every level and family: no NaN, exception, wall crossing,
     penetration or energy gain beyond the bounds of experiments.stress.bounds."""
