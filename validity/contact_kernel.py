@@ -176,12 +176,15 @@ def _strictly_inside(verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, p
         if px <= box[0] or py <= box[1] or px >= box[2] or py >= box[3]:
             continue
         b, nb = verts[q], counts[q]
-        inner = -np.inf
+        inside = True
         for i in range(nb):
-            nx, ny, ok = _edge_normal(b, i, nb)
-            if ok:
-                inner = max(inner, nx * (px - b[i, 0]) + ny * (py - b[i, 1]))
-        if inner < -_TINY:
+            j = (i + 1) % nb
+            ex, ey = b[j, 0] - b[i, 0], b[j, 1] - b[i, 1]
+            cross = ey * (px - b[i, 0]) - ex * (py - b[i, 1])  # |e| times the outward distance
+            if cross > -_TINY * (abs(ex) + abs(ey)) and ex * ex + ey * ey > _TINY * _TINY:
+                inside = False  # outside, on, or within round-off of edge i's line
+                break
+        if inside:
             return True
     return False
 
@@ -280,10 +283,10 @@ def find_contacts(
     x0, y0, x1, y1 = _box_of(world)
     nc = 0
     clear = np.inf
-    buried = np.zeros(n, dtype=np.bool_)
+    buried = 0  # bit k: part corner k is strictly inside the solid (parts have < 63 corners)
     for k in range(n):
         if _strictly_inside(verts, counts, aabbs, world[k, 0], world[k, 1]):
-            buried[k] = True
+            buried |= 1 << k
             depth, nx, ny = solid_depth(
                 world[k, 0], world[k, 1], verts, counts, aabbs, surface, circles
             )
@@ -297,7 +300,7 @@ def find_contacts(
         b, nb = verts[p], counts[p]
         nearest = np.inf
         for k in range(n):
-            if buried[k]:
+            if buried >> k & 1:
                 continue
             d, nx, ny, _, _, _, hidden = point_polygon_feature(
                 world[k, 0], world[k, 1], b, nb, margin, surface[p], corners[p]
