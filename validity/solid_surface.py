@@ -105,11 +105,26 @@ def _merge(intervals: list[tuple[float, float]]) -> list[tuple[float, float]]:
     return out
 
 
+def piece_boxes(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """``(P, 4)``: (xmin, ymin, xmax, ymax) of each piece."""
+    boxes = np.empty((verts.shape[0], 4))
+    for p in range(verts.shape[0]):
+        v = verts[p, : int(counts[p])]
+        boxes[p, :2], boxes[p, 2:] = v.min(axis=0), v.max(axis=0)
+    return boxes
+
+
 def covered_intervals(
-    verts: np.ndarray, counts: np.ndarray, circles: np.ndarray, p: int, i: int
+    verts: np.ndarray,
+    counts: np.ndarray,
+    circles: np.ndarray,
+    p: int,
+    i: int,
+    boxes: np.ndarray | None = None,
 ) -> list[tuple[float, float]]:
     """Disjoint, sorted parameters ``[t0, t1]`` (0 at vertex i, 1 at vertex i + 1) of edge i of
-    polygon p along which another piece (polygon or disc) lies just beyond the edge."""
+    polygon p along which another piece (polygon or disc) lies just beyond the edge.
+    ``boxes`` (:func:`piece_boxes`) lets far pieces be skipped; computed when not given."""
     n = int(counts[p])
     a, b = verts[p, i], verts[p, (i + 1) % n]
     d = b - a
@@ -119,8 +134,15 @@ def covered_intervals(
     normal = np.array([d[1], -d[0]]) / length
     scale = 1.0 + float(np.max(np.abs(verts[p, :n])))
     tol = 1e-12 * scale
+    if boxes is None:
+        boxes = piece_boxes(verts, counts)
+    x0, x1 = min(a[0], b[0]) - tol, max(a[0], b[0]) + tol
+    y0, y1 = min(a[1], b[1]) - tol, max(a[1], b[1]) + tol
     found = []
     for q in range(verts.shape[0]):
+        box = boxes[q]
+        if box[0] > x1 or box[2] < x0 or box[1] > y1 or box[3] < y0:
+            continue  # a piece apart from the edge covers none of it
         if q != p:
             cover = _polygon_cover(a, d, normal, verts[q, : int(counts[q])], tol)
             if cover is not None:
@@ -139,12 +161,13 @@ def split_at_cover(verts: np.ndarray, counts: np.ndarray, circles: np.ndarray) -
     pieces: list[list[np.ndarray]] = []
     flags: list[list[bool]] = []
     inserted: list[list[bool]] = []
+    boxes = piece_boxes(verts, counts)
     for p in range(verts.shape[0]):
         n = int(counts[p])
         pts, surf, new = [], [], []
         for i in range(n):
             a, b = verts[p, i], verts[p, (i + 1) % n]
-            cover = covered_intervals(verts, counts, circles, p, i)
+            cover = covered_intervals(verts, counts, circles, p, i, boxes)
             cuts = sorted({t for lo, hi in cover for t in (lo, hi) if _T_TOL < t < 1.0 - _T_TOL})
             bounds = [0.0, *cuts, 1.0]
             for k in range(len(bounds) - 1):

@@ -81,10 +81,13 @@ def passive_drop(
     step: float = DEFAULT_STEP,
     t_max: float = 10.0,
     level: DynamicLevel | None = None,
+    start: Sequence[float] | None = None,
 ) -> DropResult:
-    """Drop the part from the scene's start ``orientation`` and judge where it ends."""
+    """Drop the part from the scene's start ``orientation`` and judge where it ends; ``start``
+    (x, y, yaw, vx, vy, omega) replaces the start at rest in that orientation's pose."""
     level = level or DynamicLevel(scene, step=step)
-    start = level.state_of_pose(scene.start(orientation))
+    if start is None:
+        start = level.state_of_pose(scene.start(orientation))
     level.simulate(start, duration=level.step)  # load the compiled kernel before the clock
     t0 = time.perf_counter()
     run = level.simulate(

@@ -1,0 +1,105 @@
+"""What a feeder sees from one part to the next: the perturbations of a passive drop.
+
+A design's verdict is a success probability over drops that differ the way real ones do
+(issue 13): the part enters a little off the nominal pose and not quite at rest, the friction
+coefficient varies from part to part, and the feeder itself is made to a tolerance. Each
+perturbation is uniform in a stated half-range; a drop's draw is a function of the verdict's
+seed and the drop's index only, so the same seed gives the same drops on any executor and in
+any batching.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from feeders.design import PARAMETER_NAMES, PHYSICAL_BOUNDS, DesignParameters
+
+LIMITS = {
+    "position": (0.0, 0.5),
+    "yaw": (0.0, 0.5),
+    "speed": (0.0, 1.0),
+    "friction": (0.0, 0.9),
+    "tolerance": (0.0, 0.1),
+}
+"""Allowed half-ranges: position (length), yaw (rad), speed (length/s), friction (relative,
+below 1 so mu stays >= 0) and tolerance (relative, per design parameter)."""
+
+
+@dataclass(frozen=True)
+class Perturbations:
+    """Half-ranges of the uniform perturbations of one drop (the issue's defaults).
+
+    ``position``: entry offset in x and y (length); ``yaw``: entry yaw offset (rad); ``speed``:
+    entry velocity in x and y (length/s); ``friction``: relative change of mu (0.2: mu times
+    a factor in [0.8, 1.2]); ``tolerance``: relative manufacturing error of each of the 12
+    design parameters (0.01: +-1%).
+    """
+
+    position: float = 0.05
+    yaw: float = 0.05
+    speed: float = 0.05
+    friction: float = 0.2
+    tolerance: float = 0.01
+
+    def __post_init__(self) -> None:
+        for name, (low, high) in LIMITS.items():
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and math.isfinite(value)):
+                raise ValueError(f"perturbations.{name} = {value!r} must be a number")
+            if not low <= value <= high:
+                raise ValueError(
+                    f"perturbations.{name} = {value!r} is outside the allowed range "
+                    f"[{low:g}, {high:g}]"
+                )
+
+    @classmethod
+    def none(cls) -> Perturbations:
+        """No perturbation: every drop is the nominal one."""
+        return cls(0.0, 0.0, 0.0, 0.0, 0.0)
+
+    def to_dict(self) -> dict[str, float]:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class DropDraw:
+    """One drop's perturbation: design factors (12), friction factor, and per entry
+    orientation the offset (dx, dy, dyaw) and entry velocity (vx, vy)."""
+
+    design_factors: tuple[float, ...]
+    friction_factor: float
+    entry_offsets: tuple[tuple[float, float, float], ...]
+    entry_velocities: tuple[tuple[float, float], ...]
+
+
+def draw(perturbations: Perturbations, seed: int, index: int, entries: int = 2) -> DropDraw:
+    """The perturbation of drop ``index`` of a verdict with ``seed`` (``entries`` entry
+    orientations share the toleranced feeder and the friction: one made feeder, one part
+    batch, both entries)."""
+    rng = np.random.default_rng([seed, index])
+    p = perturbations
+    factors = 1.0 + p.tolerance * rng.uniform(-1.0, 1.0, len(PARAMETER_NAMES))
+    friction = 1.0 + p.friction * rng.uniform(-1.0, 1.0)
+    offsets, velocities = [], []
+    for _ in range(entries):
+        dx, dy = p.position * rng.uniform(-1.0, 1.0, 2)
+        dyaw = p.yaw * rng.uniform(-1.0, 1.0)
+        vx, vy = p.speed * rng.uniform(-1.0, 1.0, 2)
+        offsets.append((float(dx), float(dy), float(dyaw)))
+        velocities.append((float(vx), float(vy)))
+    return DropDraw(
+        tuple(float(f) for f in factors), float(friction), tuple(offsets), tuple(velocities)
+    )
+
+
+def toleranced(design: DesignParameters, factors: tuple[float, ...]) -> DesignParameters:
+    """The design as made: each parameter times its factor, kept within what can be built
+    (``feeders.design.PHYSICAL_BOUNDS``)."""
+    values = []
+    for name, factor in zip(PARAMETER_NAMES, factors, strict=True):
+        low, high = PHYSICAL_BOUNDS[name]
+        values.append(min(high, max(low, getattr(design, name) * factor)))
+    return DesignParameters.from_vector(values)

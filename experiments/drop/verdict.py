@@ -1,0 +1,272 @@
+"""The feeder's verdict: does the design orient the part, passively, with what probability.
+
+A feeder is passive: the part slides in under gravity and must leave heavy end down whichever
+way it entered (paper Section 4, Figs. 10-11). One nominal drop cannot say so: contact through
+a feeder is chaotic (a 1e-9 change of the start changes the end), so the verdict is a success
+probability over drops perturbed the way real ones are (:mod:`experiments.drop.perturbations`).
+
+Each trial makes one feeder to tolerance, one friction coefficient, and drops the part once
+from every entry orientation with its own entry noise. Per orientation the verdict reports
+the success probability with a Wilson 95% interval; for the design the probability that one
+trial succeeds from every entry ("P(both)"). The design *works* when the lower bound of every
+orientation's interval clears ``target``. Trials run in batches and stop as soon as that is
+decided either way (every lower bound above the target, or some upper bound below it), so a
+clear case costs ``min_drops`` trials and only a marginal one runs to ``max_drops``; the
+repeated looks make the intervals slightly optimistic at the stopping time, which is why the
+decision needs the whole interval on one side. Every drop's outcome goes into the orientation
+transition matrix (entry -> :data:`experiments.drop.outcomes.OUTCOMES`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+from experiments.drop.outcomes import OUTCOMES, classify
+from experiments.drop.passive import passive_drop
+from experiments.drop.perturbations import DropDraw, Perturbations, draw, toleranced
+from experiments.proportions import wilson_interval
+from feeders.design import DesignParameters
+from feeders.feeder import DEFAULT_FRICTION, ORIENTATIONS, DegenerateDesign, build_feeder
+from feeders.part import DEFAULT_PEG, Peg
+from feeders.scene import Scene
+from validity.dynamic import DEFAULT_STEP, DynamicLevel
+
+UNBUILDABLE = "feeder not buildable"  # the toleranced design has no valid feeder
+CLASSES = (*OUTCOMES, UNBUILDABLE)
+ENTRY_RETRIES = 6  # halvings of a drop's entry offset that puts the part into a wall
+
+
+@dataclass(frozen=True)
+class VerdictSettings:
+    """How a verdict is reached: the target probability, the trial budget (``min_drops``
+    before the first look, then a look every ``batch``, at most ``max_drops``), the dynamic
+    level's step h (s) and longest drop (s), and the perturbations."""
+
+    target: float = 0.9
+    min_drops: int = 20
+    batch: int = 10
+    max_drops: int = 200
+    step: float = DEFAULT_STEP
+    t_max: float = 10.0
+    perturbations: Perturbations = field(default_factory=Perturbations)
+
+    def __post_init__(self) -> None:
+        checks = (
+            ("target", self.target, 0.0, 1.0),
+            ("min_drops", self.min_drops, 1, 100_000),
+            ("batch", self.batch, 1, 100_000),
+            ("max_drops", self.max_drops, 1, 100_000),
+            ("step", self.step, 1e-6, 0.1),
+            ("t_max", self.t_max, 1e-3, 3600.0),
+        )
+        for name, value, low, high in checks:
+            if not (isinstance(value, int | float) and math.isfinite(value)):
+                raise ValueError(f"verdict.{name} = {value!r} must be a number")
+            if not low <= value <= high:
+                raise ValueError(
+                    f"verdict.{name} = {value!r} is outside the allowed range [{low:g}, {high:g}]"
+                )
+        if self.min_drops > self.max_drops:
+            raise ValueError(
+                f"verdict.min_drops = {self.min_drops} is more than max_drops = {self.max_drops}"
+            )
+
+
+@dataclass(frozen=True)
+class Trial:
+    """One trial: per entry orientation, success, outcome class and T (s; nan if unbuilt)."""
+
+    index: int
+    success: tuple[bool, ...]
+    outcome: tuple[str, ...]
+    T: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """A design's verdict over its trials (plain data; :meth:`to_dict` for JSON)."""
+
+    orientations: tuple[str, ...]
+    trials: tuple[Trial, ...]
+    target: float
+    decision: str  # "works", "fails" or "undecided" (max_drops reached in between)
+    wall_time: float
+
+    @property
+    def drops(self) -> int:
+        return len(self.trials)
+
+    def successes(self, orientation: str) -> int:
+        k = self.orientations.index(orientation)
+        return sum(t.success[k] for t in self.trials)
+
+    def interval(self, orientation: str) -> tuple[float, float]:
+        return wilson_interval(self.successes(orientation), self.drops)
+
+    @property
+    def both(self) -> int:
+        return sum(all(t.success) for t in self.trials)
+
+    @property
+    def both_interval(self) -> tuple[float, float]:
+        return wilson_interval(self.both, self.drops)
+
+    @property
+    def works(self) -> bool:
+        return self.decision == "works"
+
+    def transitions(self) -> dict[str, dict[str, int]]:
+        """Entry orientation -> outcome class -> number of drops (every class listed)."""
+        out = {o: dict.fromkeys(CLASSES, 0) for o in self.orientations}
+        for t in self.trials:
+            for o, c in zip(self.orientations, t.outcome, strict=True):
+                out[o][c] += 1
+        return out
+
+    def exit_times(self, orientation: str) -> list[float]:
+        """T (s) of the successful drops from ``orientation``."""
+        k = self.orientations.index(orientation)
+        return [t.T[k] for t in self.trials if t.success[k]]
+
+    def to_dict(self) -> dict:
+        per = {}
+        for o in self.orientations:
+            lo, hi = self.interval(o)
+            times = self.exit_times(o)
+            per[o] = {
+                "successes": self.successes(o),
+                "p": self.successes(o) / self.drops,
+                "interval": [lo, hi],
+                "mean_exit_time_s": sum(times) / len(times) if times else None,
+            }
+        lo, hi = self.both_interval
+        return {
+            "decision": self.decision,
+            "works": self.works,
+            "target": self.target,
+            "drops": self.drops,
+            "orientations": per,
+            "both": {"successes": self.both, "p": self.both / self.drops, "interval": [lo, hi]},
+            "transitions": self.transitions(),
+            "wall_time_s": self.wall_time,
+        }
+
+
+def _entry(level: DynamicLevel, pose, offset, velocity) -> tuple[float, ...]:
+    """The perturbed entry state, the offset halved until the part is clear of every wall."""
+    scale = 1.0
+    for _ in range(ENTRY_RETRIES):
+        state = (
+            pose[0] + scale * offset[0],
+            pose[1] + scale * offset[1],
+            pose[2] + scale * offset[2],
+            velocity[0],
+            velocity[1],
+            0.0,
+        )
+        if level.clearance(state) >= 0.0:
+            return state
+        scale *= 0.5
+    return (pose[0], pose[1], pose[2], velocity[0], velocity[1], 0.0)
+
+
+def run_trial(
+    make_scene: Callable[[DropDraw], Scene],
+    orientations: Sequence[str],
+    settings: VerdictSettings,
+    seed: int,
+    index: int,
+) -> Trial:
+    """Trial ``index`` of a verdict with ``seed``: one made feeder, a drop per orientation."""
+    perturbation = draw(settings.perturbations, seed, index, len(orientations))
+    try:
+        scene = make_scene(perturbation)
+    except DegenerateDesign:
+        n = len(orientations)
+        return Trial(index, (False,) * n, (UNBUILDABLE,) * n, (math.nan,) * n)
+    level = DynamicLevel(scene, step=settings.step)
+    success, outcome, times = [], [], []
+    for k, orientation in enumerate(orientations):
+        start = _entry(
+            level,
+            scene.start(orientation),
+            perturbation.entry_offsets[k],
+            perturbation.entry_velocities[k],
+        )
+        result = passive_drop(scene, orientation, t_max=settings.t_max, level=level, start=start)
+        success.append(result.success)
+        outcome.append(classify(scene, result.end, result.final_pose, result.success))
+        times.append(result.T)
+    return Trial(index, tuple(success), tuple(outcome), tuple(times))
+
+
+def decide(successes: Sequence[int], drops: int, target: float) -> str:
+    """ "works" when every orientation's Wilson lower bound clears ``target``, "fails" when
+    some upper bound is below it, else "undecided"."""
+    intervals = [wilson_interval(k, drops) for k in successes]
+    if all(lo > target for lo, _ in intervals):
+        return "works"
+    if any(hi < target for _, hi in intervals):
+        return "fails"
+    return "undecided"
+
+
+def verdict_of(
+    make_scene: Callable[[DropDraw], Scene],
+    orientations: Sequence[str],
+    settings: VerdictSettings,
+    seed: int,
+) -> Verdict:
+    """Trials of ``make_scene`` (a feeder made from a draw) until the verdict is decided."""
+    t0 = time.perf_counter()
+    trials: list[Trial] = []
+    decision = "undecided"
+    while len(trials) < settings.max_drops:
+        look = settings.min_drops if not trials else len(trials) + settings.batch
+        for index in range(len(trials), min(look, settings.max_drops)):
+            trials.append(run_trial(make_scene, orientations, settings, seed, index))
+        counts = [sum(t.success[k] for t in trials) for k in range(len(orientations))]
+        decision = decide(counts, len(trials), settings.target)
+        if decision != "undecided":
+            break
+    return Verdict(
+        tuple(orientations), tuple(trials), settings.target, decision, time.perf_counter() - t0
+    )
+
+
+def design_verdict(
+    design: DesignParameters,
+    part: Peg = DEFAULT_PEG,
+    friction: float | None = None,
+    settings: VerdictSettings | None = None,
+    seed: int = 0,
+    **feeder_options,
+) -> Verdict:
+    """The verdict of a feeder design for ``part`` at ``friction`` (None: the feeder's
+    default mu), both entries (:data:`feeders.feeder.ORIENTATIONS`); ``feeder_options`` go to
+    :func:`feeders.feeder.build_feeder`."""
+    settings = settings or VerdictSettings()
+    build_feeder(design, part, **feeder_options)  # DegenerateDesign at once for the nominal
+    options = dict(feeder_options)
+    mu = DEFAULT_FRICTION if friction is None else friction
+
+    def make_scene(d: DropDraw) -> Scene:
+        made = toleranced(design, d.design_factors)
+        return build_feeder(made, part, friction=mu * d.friction_factor, **options)
+
+    return verdict_of(make_scene, ORIENTATIONS, settings, seed)
+
+
+def scene_verdict(scene: Scene, settings: VerdictSettings | None = None, seed: int = 0) -> Verdict:
+    """The verdict of a scene as it is (free-form or built): entry and friction perturbed,
+    the obstacles not (a scene has no design to make to tolerance); every start it has."""
+    settings = settings or VerdictSettings()
+
+    def make_scene(d: DropDraw) -> Scene:
+        return dataclasses.replace(scene, friction=scene.friction * d.friction_factor)
+
+    return verdict_of(make_scene, tuple(scene.starts), settings, seed)
