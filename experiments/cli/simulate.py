@@ -1,15 +1,20 @@
 """``partfeeder simulate``: the passive drop of the part through a feeder with the dynamic
 level, per entry orientation; prints each run and Eq. 10's objective, can write a snapshot
-strip and an animation."""
+strip and an animation. With ``--samples N`` it gives the design's verdict instead: the
+success probability per entry over up to N perturbed drops (:mod:`experiments.drop.verdict`)."""
 
 from __future__ import annotations
 
 import argparse
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from experiments.cli.scenes import add_scene_arguments, load_scene, orientations
 from experiments.cli.usage import UsageError, check_time, out_dir
+
+if TYPE_CHECKING:
+    from feeders.scene import Scene
 
 
 def add_arguments(sim: argparse.ArgumentParser) -> None:
@@ -26,6 +31,17 @@ def add_arguments(sim: argparse.ArgumentParser) -> None:
     )
     sim.add_argument("--no-animation", action="store_true", help="write the strip only")
     sim.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    sim.add_argument(
+        "--samples",
+        type=int,
+        default=0,
+        help="the verdict over up to N perturbed drops per entry (sequential: stops when "
+        "decided; default 0: the nominal drops only)",
+    )
+    sim.add_argument(
+        "--target", type=float, default=0.9, help="success probability a design must clear"
+    )
+    sim.add_argument("--seed", type=int, default=0, help="seed of the perturbations")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -35,6 +51,8 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(f"--step = {args.step} is outside the allowed range [1e-06, 0.1] s")
     check_time(args.time)
     scene = load_scene(args.design, args.scene)
+    if args.samples:
+        return _verdict(scene, args)
     chosen = orientations(scene, args.orientation)
     out = out_dir(args.out)
     results = [passive_drop(scene, o, step=args.step, t_max=args.time) for o in chosen]
@@ -70,4 +88,63 @@ def run(args: argparse.Namespace) -> int:
     print(f"Eq. 10 objective (w = 5): {objective:.3f}")
     for f in files:
         print(f"wrote: {f}")
+    return 0
+
+
+MAX_SAMPLES = 100_000
+
+
+def _verdict(scene: Scene, args: argparse.Namespace) -> int:
+    """Print (or write as JSON) the design's passive verdict."""
+    from experiments.drop.verdict import VerdictSettings, design_verdict, scene_verdict
+
+    if not 1 <= args.samples <= MAX_SAMPLES:
+        raise UsageError(
+            f"--samples = {args.samples} is outside the allowed range [1, {MAX_SAMPLES}]"
+        )
+    if not 0.0 <= args.target <= 1.0:
+        raise UsageError(f"--target = {args.target} is outside the allowed range [0, 1]")
+    if args.seed < 0:
+        raise UsageError(f"--seed = {args.seed} must be >= 0")
+    settings = VerdictSettings(
+        target=args.target,
+        min_drops=min(20, args.samples),
+        max_drops=args.samples,
+        step=args.step,
+        t_max=args.time,
+    )
+    if scene.design is not None:
+        verdict = design_verdict(
+            scene.design,
+            scene.part,
+            scene.friction,
+            settings,
+            seed=args.seed,
+            gravity=scene.gravity,
+            inputs=scene.inputs,
+            restitution=scene.restitution,
+            name=scene.name,
+        )
+    else:
+        verdict = scene_verdict(scene, settings, seed=args.seed)
+    report = verdict.to_dict()
+    if args.json:
+        print(json.dumps({"scene": scene.name, **report}, indent=2))
+        return 0
+    print(
+        f"{scene.name} | passive verdict over {verdict.drops} perturbed drops "
+        f"(seed {args.seed}, h = {args.step:g} s): {verdict.decision.upper()} "
+        f"(target {args.target:g})"
+    )
+    print(f"{'entry':<16}{'P(success)':>11}{'95% interval':>18}{'mean T (s)':>12}")
+    for o, row in report["orientations"].items():
+        lo, hi = row["interval"]
+        t = "-" if row["mean_exit_time_s"] is None else f"{row['mean_exit_time_s']:.3f}"
+        print(f"{o:<16}{row['p']:>11.3f}{f'[{lo:.3f}, {hi:.3f}]':>18}{t:>12}")
+    lo, hi = report["both"]["interval"]
+    print(f"{'both entries':<16}{report['both']['p']:>11.3f}{f'[{lo:.3f}, {hi:.3f}]':>18}")
+    print("where the drops ended (entry -> outcome: drops):")
+    for o, row in report["transitions"].items():
+        ends = ", ".join(f"{c}: {n}" for c, n in row.items() if n)
+        print(f"  {o}: {ends}")
     return 0

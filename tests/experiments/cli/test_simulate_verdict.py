@@ -1,0 +1,38 @@
+"""``partfeeder simulate --samples N``: the design's passive verdict from the command line."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from cli_process import run_cli
+
+from experiments.cli import run
+
+
+def test_samples_prints_the_verdict_as_json(capsys):
+    """table3 with the default part: per entry a probability inside its interval, and every
+    drop in the transition matrix."""
+    scene_args = ["--design", "table3", "--samples", "60", "--json", "--time", "5"]
+    assert run(["simulate", *scene_args]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["scene"] == "table3"
+    assert set(report["orientations"]) == {"heavy_leading", "heavy_trailing"}
+    assert report["drops"] <= 60
+    for o, row in report["orientations"].items():
+        assert sum(report["transitions"][o].values()) == report["drops"]
+        assert 0.0 <= row["interval"][0] <= row["p"] <= row["interval"][1] <= 1.0
+
+
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--samples", "-3"], "--samples = -3 is outside the allowed range"),
+        (["--samples", "10", "--target", "1.5"], "--target = 1.5 is outside the allowed range"),
+    ],
+)
+def test_bad_verdict_options_are_one_line_and_exit_2(extra, message):
+    done = run_cli("simulate", "--design", "table3", *extra, timeout=120)
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0]
