@@ -70,3 +70,21 @@ def test_large_step_overlap_stays_within_the_linearisation_bound(name):
     record, _ = _rerun(name)
     assert record["hard"] == []
     assert record["max_depth"] > 0.05  # the step really is that coarse
+
+
+OPEN = sorted((CASES / "open").glob("*.yaml"))
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="open (issue 11): the part ends straddling a thin piece (a star's spike, a thin "
+    "convex sliver): 0.07-0.08 deep by the largest held disc, with no vertex of either inside "
+    "the other, so the vertex-edge contact features never see it (the kernel reads < 0.012); "
+    "h = 5e-3 to 4e-2, one of them passive",
+)
+@pytest.mark.parametrize("path", OPEN, ids=[p.stem for p in OPEN])
+def test_open_cases_of_the_full_run(path):
+    """The 3 hard failures left in the full run (seed 0, 10,000 cases); strict: each passes
+    once the fault is fixed, and its mark must go."""
+    case, _ = read_case(path)
+    assert record_of(case)["hard"] == []
