@@ -1,12 +1,15 @@
 """``partfeeder calibrate``: the geometric level's verdict on the paper's designs, and which
-corners of the Table 2 box build."""
+corners of the Table 2 box build; with ``--part``, the calibration of what the paper does not
+give (peg length, width, mass split, friction; :mod:`experiments.verdicts.part_calibration`)."""
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
 
-from experiments.cli.usage import UsageError, check_time
+from experiments.cli.usage import UsageError, check_time, out_dir
+
+PART_FILES = ("part-calibration.md", "part-calibration.json", "calibration-landscape.png")
 
 
 def add_arguments(cal: argparse.ArgumentParser) -> None:
@@ -16,11 +19,26 @@ def add_arguments(cal: argparse.ArgumentParser) -> None:
         "--out",
         type=Path,
         default=None,
-        help="directory for pictures of table3 and of the box's corners",
+        help="directory for pictures of table3 and of the box's corners; with --part, for "
+        f"the calibration's table, data and heatmap ({', '.join(PART_FILES)})",
+    )
+    cal.add_argument(
+        "--part",
+        action="store_true",
+        help="calibrate the part and friction instead: the landscape over peg length, width, "
+        "heavy fraction and mu (needs --out; ~15-20 min on 2 cores; --runs/--time not used)",
+    )
+    cal.add_argument("--quick", action="store_true", help="with --part: a tiny grid and budget")
+    cal.add_argument(
+        "--workers", type=int, default=2, help="with --part: worker processes (1: no pool)"
     )
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.part:
+        return _run_part(args)
+    if args.quick:
+        raise UsageError("--quick needs --part")
     from tqdm import tqdm
 
     from experiments.pictures.atlas import corner_census, draw_atlas
@@ -45,4 +63,43 @@ def run(args: argparse.Namespace) -> int:
     if args.out is not None:
         for path in draw_atlas(args.out):
             print(f"picture: {path}")
+    return 0
+
+
+def _run_part(args: argparse.Namespace) -> int:
+    """The part calibration: landscape, choice, Markdown table + JSON + heatmap into --out."""
+    import json
+
+    from tqdm import tqdm
+
+    from experiments.verdicts import part_calibration as pc
+
+    if args.out is None:
+        raise UsageError("--part needs --out DIR (where the table, data and heatmap go)")
+    if not 1 <= args.workers <= 64:
+        raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
+    out = out_dir(args.out)
+    assert out is not None
+    grid, budget = (
+        (pc.QUICK_GRID, pc.QUICK_BUDGET) if args.quick else (pc.FULL_GRID, pc.FULL_BUDGET)
+    )
+    with tqdm(total=0, desc="part calibration", unit="job") as bar:
+
+        def progress(label: str, queued: int) -> None:
+            if queued:
+                bar.total += queued
+                bar.refresh()
+            else:
+                bar.set_postfix_str(label)
+                bar.update()
+
+        landscape = pc.run_landscape(grid, budget, workers=args.workers, progress=progress)
+    table = pc.markdown(landscape)
+    md, data, png = (out / name for name in PART_FILES)
+    md.write_text(table + "\n")
+    data.write_text(json.dumps(landscape.to_dict(), indent=1) + "\n")
+    pc.heatmap(landscape, png)
+    print(table)
+    for path in (md, data, png):
+        print(f"written: {path}")
     return 0
