@@ -171,16 +171,15 @@ def corner_vertices(verts: np.ndarray, counts: np.ndarray, surface: np.ndarray) 
 @njit(cache=True)
 def _strictly_inside(verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, px, py) -> bool:
     """p strictly inside (by more than round-off) one of the polygons."""
-    for q in range(verts.shape[0]):
-        box = aabbs[q]
-        if px <= box[0] or py <= box[1] or px >= box[2] or py >= box[3]:
+    for q in range(verts.shape[0]):  # indexed, not sliced: a view per piece costs more here
+        if px <= aabbs[q, 0] or py <= aabbs[q, 1] or px >= aabbs[q, 2] or py >= aabbs[q, 3]:
             continue
-        b, nb = verts[q], counts[q]
+        nb = counts[q]
         inside = True
         for i in range(nb):
             j = (i + 1) % nb
-            ex, ey = b[j, 0] - b[i, 0], b[j, 1] - b[i, 1]
-            cross = ey * (px - b[i, 0]) - ex * (py - b[i, 1])  # |e| times the outward distance
+            ex, ey = verts[q, j, 0] - verts[q, i, 0], verts[q, j, 1] - verts[q, i, 1]
+            cross = ey * (px - verts[q, i, 0]) - ex * (py - verts[q, i, 1])  # |e| x distance
             if cross > -_TINY * (abs(ex) + abs(ey)) and ex * ex + ey * ey > _TINY * _TINY:
                 inside = False  # outside, on, or within round-off of edge i's line
                 break
