@@ -108,3 +108,30 @@ def machine_info() -> dict:
         "python-fcl": version("python-fcl"),
         "shapely": version("shapely"),
     }
+
+
+def interleaved_seconds(
+    runs: dict[str, tuple[Callable[[], object], Callable[[], object]]], repeats: int
+) -> dict[str, list[float]]:
+    """Seconds of each run's timed call over ``repeats`` rounds, the runs interleaved.
+
+    ``runs`` maps a key to ``(prepare, timed)``: ``prepare`` (untimed) resets the run, then
+    ``timed`` is timed once. Each round visits every run once, starting one further along each
+    round, so slow drifts of a shared machine fall on every run alike; one untimed warm-up
+    round comes first (compiled code loaded, caches filled). Take medians of the lists.
+    """
+    if repeats < 1:
+        raise ValueError(f"repeats = {repeats} must be >= 1")
+    keys = list(runs)
+    out: dict[str, list[float]] = {k: [] for k in keys}
+    for round_ in range(repeats + 1):
+        shift = round_ % len(keys) if keys else 0
+        for key in keys[shift:] + keys[:shift]:
+            prepare, timed = runs[key]
+            prepare()
+            t0 = time.perf_counter()
+            timed()
+            elapsed = time.perf_counter() - t0
+            if round_:
+                out[key].append(elapsed)
+    return out
