@@ -125,13 +125,9 @@ class AnalyticCase:
 
 CASES: tuple[AnalyticCase, ...] = (
     AnalyticCase("slide", "sliding, incline 30 deg, mu 0.3", "bench-slide.yaml", "incline"),
-    AnalyticCase(
-        "threshold", "near stick/slip, mu 0.55", "bench-threshold.yaml", "incline"
-    ),
+    AnalyticCase("threshold", "near stick/slip, mu 0.55", "bench-threshold.yaml", "incline"),
     AnalyticCase("stick", "sticking, mu 0.7: creep", "bench-stick.yaml", "incline"),
-    AnalyticCase(
-        "flight", "free flight", "bench-flight.yaml", "flight", velocity=FLIGHT_VELOCITY
-    ),
+    AnalyticCase("flight", "free flight", "bench-flight.yaml", "flight", velocity=FLIGHT_VELOCITY),
     AnalyticCase("drop", "box dropped flat", "bench-drop-flat.yaml", "drop"),
 )
 CASE_NAMES = tuple(c.name for c in CASES)
@@ -148,4 +144,3 @@ def case(name: str) -> AnalyticCase:
 def steps_for(duration: float, h: float) -> int:
     """Steps of h that make ``duration`` (rounded: the h of the benchmarks divide it)."""
     return max(1, round(duration / h))
-

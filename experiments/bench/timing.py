@@ -11,7 +11,7 @@ import os
 import platform
 import statistics
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -86,6 +86,18 @@ def bench_planning(
     return out
 
 
+def cpu_model() -> str:
+    """The processor's name (Linux: /proc/cpuinfo), else what ``platform`` says."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
 def machine_info() -> dict:
     """Where the numbers were measured: cores, platform and library versions."""
 
@@ -97,6 +109,7 @@ def machine_info() -> dict:
 
     usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     return {
+        "cpu": cpu_model(),
         "cores": os.cpu_count(),
         "usable_cores": usable,
         "platform": platform.platform(),
@@ -111,7 +124,7 @@ def machine_info() -> dict:
 
 
 def interleaved_seconds(
-    runs: dict[str, tuple[Callable[[], object], Callable[[], object]]], repeats: int
+    runs: Mapping[str, tuple[Callable[[], object], Callable[[], object]]], repeats: int
 ) -> dict[str, list[float]]:
     """Seconds of each run's timed call over ``repeats`` rounds, the runs interleaved.
 

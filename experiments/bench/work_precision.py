@@ -67,12 +67,14 @@ def run_work_precision(
             wall_s_all=times,
         )
     stick = case("stick")
-    creep = {}
+    creep: dict[str, float | str] = {}
     for s in settings:
         if not s.available:
             creep[s.label] = NOT_INSTALLED
             continue
-        states = s.build(stick.scene, CREEP_H).record(stick.start, steps_for(creep_duration, CREEP_H))
+        states = s.build(stick.scene, CREEP_H).record(
+            stick.start, steps_for(creep_duration, CREEP_H)
+        )
         creep[s.label] = stick.errors(states, CREEP_H)["error"]
     return {
         "h": list(h_values),
