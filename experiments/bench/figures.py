@@ -128,8 +128,8 @@ def feeder_figure(fc: dict, path: Path) -> Path:
         rows = sorted(data["by_h"], key=lambda r: r["h"])
         hs = [r["h"] for r in rows]
         ps = [r["p"] for r in rows]
-        lows = [r["p"] - r["interval"][0] for r in rows]
-        highs = [r["interval"][1] - r["p"] for r in rows]
+        lows = [max(0.0, r["p"] - r["interval"][0]) for r in rows]
+        highs = [max(0.0, r["interval"][1] - r["p"]) for r in rows]
         axes[0].errorbar(hs, ps, yerr=[lows, highs], fmt="o-", color=colour, capsize=3, label=name)
         ref = data["reference"]
         axes[0].axhline(ref["p"], color=colour, ls="--", lw=0.8)
@@ -173,16 +173,22 @@ def feeder_figure(fc: dict, path: Path) -> Path:
     return path
 
 
+def _bars(rate: dict) -> list[list[float]]:
+    """Error bars of a rate from its interval (never negative: a Wilson bound may round past
+    the value)."""
+    lo, hi = rate["interval"]
+    return [[max(0.0, rate["value"] - lo)], [max(0.0, hi - rate["value"])]]
+
+
 def ladder_figure(ladder: dict, path: Path) -> Path:
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.4))
     levels = ladder["levels"]
     for k, (level, d) in enumerate(levels.items()):
         dis = d["vs_passive"]["disagreement"]
-        lo, hi = dis["interval"]
         axes[0].errorbar(
             d["median_s"],
             dis["value"],
-            yerr=[[dis["value"] - lo], [hi - dis["value"]]],
+            yerr=_bars(dis),
             fmt="o",
             color=f"C{k}",
             capsize=3,
@@ -203,7 +209,7 @@ def ladder_figure(ladder: dict, path: Path) -> Path:
             axes[1].errorbar(
                 k + 0.15 * (2 * j - 1),
                 r["value"],
-                yerr=[[r["value"] - r["interval"][0]], [r["interval"][1] - r["value"]]],
+                yerr=_bars(r),
                 fmt="o",
                 color=f"C{j}",
                 capsize=3,

@@ -4,7 +4,7 @@ Sections (each optional, in this order): ``analytic`` (work-precision of the ana
 against MuJoCo and pymunk, :mod:`experiments.bench.work_precision`), ``speed``
 (:mod:`experiments.bench.speed`), ``feeder`` (:mod:`experiments.bench.feeder_convergence`)
 and ``ladder`` (:mod:`experiments.bench.ladder_cost`). ``quick`` shrinks every section to a
-smoke test (under a minute with compiled kernels cached); the full run takes about ten
+smoke test (under a minute with compiled kernels cached); the full run takes about five
 minutes on two cores.
 
 Writes into the output directory: ``bench.json`` (every figure's data, the machine and the

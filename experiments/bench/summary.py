@@ -206,9 +206,23 @@ def _ladder(ladder: dict) -> list[str]:
         "disagreement",
     ]
     skip = ladder["skip_levels_not_climbed"]
+    against_dynamic = [
+        [
+            level,
+            _interval(d["vs_dynamic"]["precision"]),
+            _interval(d["vs_dynamic"]["recall"]),
+            _interval(d["vs_dynamic"]["disagreement"]),
+        ]
+        for level, d in ladder["levels"].items()
+        if level in ("geometric", "kinematic")
+    ]
     return [
         *out,
         *_table(header, rows),
+        "",
+        "Against the dynamic level (the top of `partfeeder run`'s ladder):",
+        "",
+        *_table(["level", "precision", "recall", "disagreement"], against_dynamic),
         "",
         f"Levels not climbed (skip on): the ladder took {skip['ladder_s']:.1f} s; every "
         f"design at every level (skip off) {skip['every_level_s']:.1f} s: "
