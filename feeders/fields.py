@@ -12,6 +12,18 @@ from typing import Any
 
 import yaml
 
+MAX_SHOWN = 120  # longest path or value quoted whole in a message (characters)
+MAX_NAME = 100  # characters of a scene's or config's name (it becomes part of file names)
+
+
+def shown(text: object) -> str:
+    """``text`` for a one-line message: whole when short, else its ends and its length (a
+    5,000-character path or name must not make the error unreadable)."""
+    text = str(text)
+    if len(text) <= MAX_SHOWN:
+        return text
+    return f"{text[:50]}...{text[-50:]} ({len(text)} characters)"
+
 
 class FieldError(ValueError):
     """A field of a document that is missing, of the wrong type or out of range."""
@@ -32,36 +44,54 @@ def field_errors_as(error: type[FieldError]) -> Iterator[None]:
 def number_field(value: Any, field: str, low: float = -math.inf, high: float = math.inf) -> float:
     """``value`` as a finite float in [low, high]."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise FieldError(f"{field}: expected a number, got {value!r}")
-    value = float(value)
-    if not (math.isfinite(value) and low <= value <= high):
-        raise FieldError(f"{field} = {value!r} is outside the allowed range [{low:g}, {high:g}]")
-    return value
+        raise FieldError(f"{field}: expected a number, got {shown(repr(value))}")
+    try:
+        number = float(value)
+    except OverflowError:  # an int beyond 1.8e308
+        number = math.inf if value > 0 else -math.inf
+    if not (math.isfinite(number) and low <= number <= high):
+        raise FieldError(f"{field} = {number!r} is outside the allowed range [{low:g}, {high:g}]")
+    return number
 
 
 def integer_field(value: Any, field: str, low: int, high: int) -> int:
     """``value`` as an int in [low, high] (a float such as 3.0 is not accepted)."""
     if isinstance(value, bool) or not isinstance(value, int):
-        raise FieldError(f"{field}: expected an integer, got {value!r}")
+        raise FieldError(f"{field}: expected an integer, got {shown(repr(value))}")
     if not (low <= value <= high):
-        raise FieldError(f"{field} = {value!r} is outside the allowed range [{low}, {high}]")
+        raise FieldError(f"{field} = {shown(value)} is outside the allowed range [{low}, {high}]")
     return int(value)
 
 
 def numbers_field(value: Any, field: str, count: int) -> list[float]:
     """``value`` as a list of ``count`` finite floats."""
     if not isinstance(value, (list, tuple)) or len(value) != count:
-        raise FieldError(f"{field}: expected a list of {count} numbers, got {value!r}")
+        raise FieldError(f"{field}: expected a list of {count} numbers, got {shown(repr(value))}")
     return [number_field(v, f"{field}[{i}]") for i, v in enumerate(value)]
+
+
+def name_field(value: Any, field: str = "name") -> str:
+    """``value`` as a name that can be part of a file name: a string of 1 to ``MAX_NAME``
+    characters, without '/', NUL or other control characters, and not '.' or '..'."""
+    if not isinstance(value, (str, int, float)) or isinstance(value, bool):
+        raise FieldError(f"{field}: expected a string, got {shown(repr(value))}")
+    name = str(value)
+    if not 1 <= len(name) <= MAX_NAME:
+        raise FieldError(f"{field}: {len(name)} characters; a name has 1 to {MAX_NAME} characters")
+    if "/" in name or name in (".", "..") or any(ord(c) < 32 or ord(c) == 127 for c in name):
+        raise FieldError(
+            f"{field} = {name!r}: a name cannot hold '/' or control characters, or be '.' or '..'"
+        )
+    return name
 
 
 def mapping_field(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
     """``value`` as a mapping whose keys are all in ``allowed``."""
     if not isinstance(value, dict):
-        raise FieldError(f"{field}: expected a mapping, got {value!r}")
-    unknown = sorted(set(value) - allowed)
+        raise FieldError(f"{field}: expected a mapping, got {shown(repr(value))}")
+    unknown = sorted(map(str, set(value) - allowed))
     if unknown:
-        raise FieldError(f"{field}: unknown key(s) {unknown}; allowed: {sorted(allowed)}")
+        raise FieldError(f"{field}: unknown key(s) {shown(unknown)}; allowed: {sorted(allowed)}")
     return value
 
 
@@ -76,35 +106,37 @@ def _yaml_problem(exc: yaml.YAMLError) -> str:
 
 MAX_DOCUMENT_BYTES = 1 << 20  # a scene or config is a few kilobytes; 1 MiB is generous
 MAX_DEPTH = 32  # nesting of mappings and lists (a scene needs 4)
+MAX_NODES = 100_000  # scalars, lists and mappings (a 1,000-point polygon is 3,001)
+# libyaml's parser when PyYAML was built with it: 10-50 times faster than the pure-Python one,
+# which takes ~20 s on a 800 kB list of numbers (within the byte limit, but a hang to a user).
+_FAST = yaml.__with_libyaml__
+_PARSER: Any = yaml.CSafeLoader if _FAST else yaml.SafeLoader
 
 
-class _BoundedLoader(yaml.SafeLoader):
-    """``yaml.safe_load``'s loader that refuses aliases (``*name``: a 322-byte "billion laughs"
-    document expands to gigabytes) and nesting deeper than ``MAX_DEPTH`` (Python's recursion
-    limit otherwise ends it in a RecursionError). A scene or config never needs either."""
-
-    def __init__(self, stream: str) -> None:
-        super().__init__(stream)
-        self._depth = 0
-
-    def compose_node(self, parent: Any, index: Any) -> Any:
-        if self.check_event(yaml.AliasEvent):
-            event = self.peek_event()
-            raise yaml.composer.ComposerError(
-                None, None, "aliases (*name) are not allowed", event.start_mark
-            )
-        self._depth += 1
-        try:
-            if self._depth > MAX_DEPTH:
-                raise yaml.composer.ComposerError(
-                    None,
-                    None,
-                    f"nested deeper than {MAX_DEPTH} levels",
-                    self.peek_event().start_mark,
-                )
-            return super().compose_node(parent, index)
-        finally:
-            self._depth -= 1
+def _check_events(text: str) -> None:
+    """Walk the document's parse events (no objects are built) and raise
+    ``yaml.composer.ComposerError`` at the first alias (``*name``: a 322-byte "billion laughs"
+    document expands to gigabytes), nesting deeper than ``MAX_DEPTH`` (Python's recursion limit
+    ends it in a RecursionError) or node beyond ``MAX_NODES`` (construction time). A scene or
+    config never needs any of them."""
+    depth = nodes = 0
+    for event in yaml.parse(text, Loader=_PARSER):
+        problem = None
+        if isinstance(event, yaml.AliasEvent):
+            problem = "aliases (*name) are not allowed"
+        elif isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+            depth += 1
+            nodes += 1
+            if depth > MAX_DEPTH:
+                problem = f"nested deeper than {MAX_DEPTH} levels"
+        elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+            depth -= 1
+        elif isinstance(event, yaml.ScalarEvent):
+            nodes += 1
+        if nodes > MAX_NODES and problem is None:
+            problem = f"more than {MAX_NODES} values"
+        if problem is not None:
+            raise yaml.composer.ComposerError(None, None, problem, event.start_mark)
 
 
 def _read_text(path: Path, kind: str, error: type[FieldError]) -> str:
@@ -113,36 +145,39 @@ def _read_text(path: Path, kind: str, error: type[FieldError]) -> str:
     try:
         info = path.stat()
     except OSError as exc:
-        raise error(f"cannot read {kind} file '{path}': {exc.strerror}") from None
+        raise error(f"cannot read {kind} file '{shown(path)}': {exc.strerror}") from None
     if not stat.S_ISREG(info.st_mode):
-        raise error(f"{kind} file '{path}' is not a regular file")
+        raise error(f"{kind} file '{shown(path)}' is not a regular file")
     if info.st_size > MAX_DOCUMENT_BYTES:
         raise error(
-            f"{kind} file '{path}' is {info.st_size} bytes; the limit is {MAX_DOCUMENT_BYTES}"
+            f"{kind} file '{shown(path)}' is {info.st_size} bytes; "
+            f"the limit is {MAX_DOCUMENT_BYTES}"
         )
     try:
         with path.open("rb") as handle:
             raw = handle.read(MAX_DOCUMENT_BYTES + 1)
     except OSError as exc:
-        raise error(f"cannot read {kind} file '{path}': {exc.strerror}") from None
+        raise error(f"cannot read {kind} file '{shown(path)}': {exc.strerror}") from None
     if len(raw) > MAX_DOCUMENT_BYTES:
-        raise error(f"{kind} file '{path}' is larger than the limit of {MAX_DOCUMENT_BYTES} bytes")
+        raise error(
+            f"{kind} file '{shown(path)}' is larger than the limit of {MAX_DOCUMENT_BYTES} bytes"
+        )
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise error(
-            f"{kind} file '{path}' is not UTF-8 text (byte {exc.start}: {raw[exc.start]:#04x})"
+            f"{kind} file '{shown(path)}' is not UTF-8 text "
+            f"(byte {exc.start}: {raw[exc.start]:#04x})"
         ) from None
 
 
 def parse_yaml(text: str) -> Any:
-    """The YAML document in ``text``: ``yaml.safe_load`` with aliases refused and nesting
-    bounded (:class:`_BoundedLoader`); raises ``yaml.YAMLError``."""
-    loader = _BoundedLoader(text)
-    try:
-        return loader.get_single_data()
-    finally:
-        loader.dispose()
+    """The YAML document in ``text``: ``yaml.safe_load``'s result, with aliases refused and
+    nesting and size bounded (:func:`_check_events`) before any object is built; raises
+    ``yaml.YAMLError``, or ValueError for an integer of more than 4,300 digits (Python's
+    limit on converting text to int)."""
+    _check_events(text)
+    return yaml.load(text, Loader=_PARSER)  # a safe loader
 
 
 def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
@@ -153,4 +188,6 @@ def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
     try:
         return parse_yaml(text)
     except yaml.YAMLError as exc:
-        raise error(f"'{path}' is not valid YAML: {_yaml_problem(exc)}") from None
+        raise error(f"'{shown(path)}' is not valid YAML: {_yaml_problem(exc)}") from None
+    except ValueError as exc:  # an integer too long to convert
+        raise error(f"'{shown(path)}': {str(exc).split(';')[0]}") from None

@@ -84,6 +84,13 @@ def scene_problems(scene: Scene) -> list[str]:
     if not all(math.isfinite(v) and abs(v) <= MAX_COORDINATE for v in scene.bounds):
         problems.append(f"bounds = {list(scene.bounds)}: each must lie within +-{MAX_COORDINATE:g}")
         return problems  # the rest is measured against the bounds
+    diagonal = math.hypot(x1 - x0, y1 - y0)
+    if scene.part.length > diagonal:
+        problems.append(
+            f"part.length = {scene.part.length:g} does not fit the scene: at most the diagonal "
+            f"of the bounds, {diagonal:.4g}"
+        )
+        return problems
     coordinates = [np.abs(p).max() for p in scene.obstacles.polygons]
     coordinates += [np.abs(c[:2]).max() + c[2] for c in scene.obstacles.circles]
     if coordinates and max(coordinates) > MAX_COORDINATE:

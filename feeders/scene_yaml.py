@@ -34,6 +34,7 @@ from feeders.fields import (
     FieldError,
     field_errors_as,
     mapping_field,
+    name_field,
     number_field,
     numbers_field,
     read_yaml,
@@ -43,7 +44,8 @@ from feeders.scene import Goal, InputSet, Scene
 from feeders.scene_checks import MAX_STARTS, gravity_problem, scene_problems
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
 
-MAX_VERTICES = 1000  # points of one polygon (ear clipping is cubic in them)
+MAX_VERTICES = 200  # points of one polygon: ear clipping is cubic in them (0.1 s at 200)
+MAX_TOTAL_VERTICES = 2000  # points of all polygons: the whole scene clips in about a second
 MAX_OBSTACLES = 1000
 
 
@@ -100,26 +102,42 @@ def _design(spec: Any) -> DesignParameters:
         raise SceneError(f"feeder: {exc}") from None
 
 
+def _count_points(spec: list[Any]) -> None:
+    """Refuse a polygon of more than ``MAX_VERTICES`` points, or more than
+    ``MAX_TOTAL_VERTICES`` in all, before any geometry (ear clipping is cubic in them)."""
+    total = 0
+    for i, item in enumerate(spec):
+        points = item.get("polygon") if isinstance(item, dict) else None
+        if not isinstance(points, list):
+            continue
+        if len(points) > MAX_VERTICES:
+            raise SceneError(
+                f"obstacles[{i}].polygon: {len(points)} points; at most {MAX_VERTICES} are allowed"
+            )
+        total += len(points)
+    if total > MAX_TOTAL_VERTICES:
+        raise SceneError(
+            f"obstacles: {total} polygon points in all; at most {MAX_TOTAL_VERTICES} are allowed"
+        )
+
+
 def _obstacles(spec: Any) -> Obstacles:
     if not isinstance(spec, list) or not spec:
         raise SceneError("obstacles: expected a non-empty list of {polygon: ...} or {circle: ...}")
     if len(spec) > MAX_OBSTACLES:
         raise SceneError(f"obstacles: {len(spec)} items; at most {MAX_OBSTACLES} are allowed")
+    _count_points(spec)
     polygons, circles, labels_p, labels_c = [], [], [], []
     for i, item in enumerate(spec):
         field = f"obstacles[{i}]"
         item = mapping_field(item, field, {"polygon", "circle", "label"})
-        label = str(item.get("label", field))
+        label = name_field(item.get("label", field), f"{field}.label")
         if ("polygon" in item) == ("circle" in item):
             raise SceneError(f"{field}: give exactly one of 'polygon' or 'circle'")
         if "polygon" in item:
             pts = item["polygon"]
             if not isinstance(pts, list):
                 raise SceneError(f"{field}.polygon: expected a list of [x, y] points")
-            if len(pts) > MAX_VERTICES:
-                raise SceneError(
-                    f"{field}.polygon: {len(pts)} points; at most {MAX_VERTICES} are allowed"
-                )
             pts = [numbers_field(p, f"{field}.polygon[{k}]", 2) for k, p in enumerate(pts)]
             try:
                 pieces = convex_pieces(pts, field=f"{field}.polygon")
@@ -196,6 +214,13 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
     (:func:`feeders.scene_checks.scene_problems`)."""
     with field_errors_as(SceneError):
         scene = _scene_from_dict(data, name)
+    return checked_scene(scene)
+
+
+def checked_scene(scene: Scene) -> Scene:
+    """``scene`` if it is physically sane (:func:`feeders.scene_checks.scene_problems`), else
+    :class:`SceneError` with the first problem: every reader of scenes (files, ``--design``)
+    refuses the same things with the same words."""
     problems = scene_problems(scene)
     if problems:
         raise SceneError(problems[0])
@@ -204,7 +229,7 @@ def scene_from_dict(data: Any, name: str = "scene") -> Scene:
 
 def _scene_from_dict(data: Any, name: str) -> Scene:
     data = mapping_field(data, "scene", _TOP_KEYS)
-    name = str(data.get("name", name))
+    name = name_field(data.get("name", name))
     env = environment_from_dict(data)
     part, friction, restitution = env["part"], env["friction"], env["restitution"]
     gravity, inputs = env["gravity"], env["inputs"]

@@ -27,22 +27,38 @@ def add_scene_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def load_scene(design: str | None, scene_file: Path | None) -> Scene:
-    """The scene of ``--design`` / ``--scene``; UsageError for bad values or a bad file."""
+    """The scene of ``--design`` / ``--scene``, physically sane (the same checks as a scene
+    file: :func:`feeders.scene_yaml.checked_scene`); UsageError for bad values or a bad file."""
     from feeders.design import DesignError, DesignParameters, preset
     from feeders.feeder import DegenerateDesign, build_feeder
-    from feeders.scene_yaml import SceneError, load_scene
+    from feeders.fields import shown
+    from feeders.scene_yaml import SceneError, checked_scene, load_scene
 
     try:
         if scene_file is not None:
             return load_scene(scene_file)
-        spec = design or "table3"
+        spec = "table3" if design is None else design.strip()
+        if not spec:
+            raise UsageError(
+                f"--design is empty; give a preset ({', '.join(sorted(PRESET_NAMES))}) or "
+                "12 comma-separated values"
+            )
         if "," in spec:
             try:
                 values = [float(v) for v in spec.split(",")]
             except ValueError:
-                raise UsageError(f"--design: '{spec}' is not 12 comma-separated numbers") from None
-            return build_feeder(DesignParameters.from_vector(values), name="custom design")
-        return build_feeder(preset(spec), name=spec)
+                raise UsageError(
+                    f"--design: '{shown(spec)}' is not 12 comma-separated numbers"
+                ) from None
+            scene = build_feeder(DesignParameters.from_vector(values), name="custom design")
+        elif spec not in PRESET_NAMES:
+            raise UsageError(
+                f"--design '{shown(spec)}' is not a preset ({', '.join(sorted(PRESET_NAMES))}) "
+                "nor 12 comma-separated values"
+            )
+        else:
+            scene = build_feeder(preset(spec), name=spec)
+        return checked_scene(scene)
     except (DesignError, SceneError) as exc:
         raise UsageError(str(exc)) from None
     except DegenerateDesign as exc:

@@ -39,8 +39,10 @@ from feeders.fields import (
     field_errors_as,
     integer_field,
     mapping_field,
+    name_field,
     number_field,
     read_yaml,
+    shown,
 )
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
@@ -111,18 +113,24 @@ class SweepConfig:
 def _rung(spec: Any, field_name: str) -> Rung:
     spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget"})
     level = spec.get("level")
-    if level not in LEVEL_NAMES:
-        raise ConfigError(f"{field_name}.level = {level!r}; allowed: {', '.join(LEVEL_NAMES)}")
+    if not isinstance(level, str) or level not in LEVEL_NAMES:
+        raise ConfigError(
+            f"{field_name}.level = {shown(repr(level))}; allowed: {', '.join(LEVEL_NAMES)}"
+        )
     planners = spec.get("planners", ["rrt"])
     if not isinstance(planners, list) or not planners:
         raise ConfigError(f"{field_name}.planners: expected a non-empty list of planner names")
     for i, p in enumerate(planners):
-        if str(p).lower() not in PLANNER_NAMES:
+        if not isinstance(p, str) or p.lower() not in PLANNER_NAMES:
             raise ConfigError(
-                f"{field_name}.planners[{i}] = {p!r}; allowed: {', '.join(PLANNER_NAMES)}"
+                f"{field_name}.planners[{i}] = {shown(repr(p))}; "
+                f"allowed: {', '.join(PLANNER_NAMES)}"
             )
+    planners = [p.lower() for p in planners]
     if len(set(planners)) != len(planners):
-        raise ConfigError(f"{field_name}.planners: {planners} names a planner twice")
+        raise ConfigError(
+            f"{field_name}.planners: {planners} names a planner twice; each at most once"
+        )
     runs = integer_field(spec.get("runs", 1), f"{field_name}.runs", 1, 1000)
     budget = mapping_field(spec.get("budget", {}), f"{field_name}.budget", {"time", "propagations"})
     if not budget:
@@ -137,7 +145,7 @@ def _rung(spec: Any, field_name: str) -> Rung:
     time_s = number_field(
         budget.get("time", default_time), f"{field_name}.budget.time", 1e-3, 86400.0
     )
-    return Rung(level, tuple(str(p).lower() for p in planners), runs, time_s, propagations)
+    return Rung(level, tuple(planners), runs, time_s, propagations)
 
 
 def config_from_dict(data: Any, name: str = "sweep") -> SweepConfig:
@@ -185,7 +193,7 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
     workers = integer_field(data.get("workers", 2), "workers", 1, 1024)
     attempts = integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100)
     return SweepConfig(
-        name=str(data.get("name", name)),
+        name=name_field(data.get("name", name)),
         count=count,
         seed=seed,
         ladder=ladder,
@@ -201,10 +209,19 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
 def load_config(path: str | Path) -> SweepConfig:
     """Read a config file (or a shipped config by name: ``default``, ``paper``)."""
     path = Path(path)
-    if not path.exists() and (CONFIG_DIR / f"{path.name}.yaml").exists() and path.suffix == "":
-        path = CONFIG_DIR / f"{path.name}.yaml"
+    shipped = CONFIG_DIR / f"{path.name}.yaml"
+    if len(path.parts) == 1 and path.suffix == "" and not _exists(path) and _exists(shipped):
+        path = shipped
     data = read_yaml(path, "config", ConfigError)
     try:
         return config_from_dict(data, name=path.stem)
     except ConfigError as exc:
-        raise ConfigError(f"{path}: {exc}") from None
+        raise ConfigError(f"{shown(path)}: {exc}") from None
+
+
+def _exists(path: Path) -> bool:
+    """Whether ``path`` exists (a name too long for the file system does not)."""
+    try:
+        return path.exists()
+    except OSError:
+        return False

@@ -10,7 +10,17 @@ from pathlib import Path
 
 import pytest
 
-from feeders.fields import MAX_DEPTH, MAX_DOCUMENT_BYTES, FieldError, read_yaml
+from feeders.fields import (
+    MAX_DEPTH,
+    MAX_DOCUMENT_BYTES,
+    MAX_NAME,
+    MAX_NODES,
+    FieldError,
+    mapping_field,
+    name_field,
+    number_field,
+    read_yaml,
+)
 
 BILLION_LAUGHS = (
     'a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]\n'
@@ -93,3 +103,59 @@ def test_devices_and_directories_are_not_regular_files(path: str) -> None:
 def test_a_missing_file_and_an_overlong_name_are_one_line_errors(tmp_path: Path) -> None:
     assert "No such file" in _error(tmp_path / "missing.yaml")
     assert "cannot read" in _error(tmp_path / ("x" * 5000 + ".yaml"))
+
+
+def test_a_dense_list_within_the_byte_limit_is_refused_by_its_node_count(tmp_path: Path) -> None:
+    """400,000 numbers in 800 kB: under the byte limit, but PyYAML's pure-Python loader took
+    ~20 s to build them. The event scan stops at MAX_NODES."""
+    path = tmp_path / "dense.yaml"
+    path.write_text("[" + ",".join(["1"] * 400_000) + "]")
+    assert path.stat().st_size <= MAX_DOCUMENT_BYTES
+    assert f"more than {MAX_NODES} values" in _error(path)
+    fine = tmp_path / "fine.yaml"
+    fine.write_text("[" + ",".join(["1"] * (MAX_NODES - 1)) + "]")
+    assert _read(fine) == [1] * (MAX_NODES - 1)
+
+
+def test_an_integer_too_long_to_convert_is_one_line(tmp_path: Path) -> None:
+    path = tmp_path / "digits.yaml"
+    path.write_text("count: " + "9" * 5000 + "\n")
+    assert "4300 digits" in _error(path)
+
+
+def test_a_long_path_is_shortened_in_the_message(tmp_path: Path) -> None:
+    message = _error(tmp_path / ("x" * 5000 + ".yaml"))
+    assert len(message) < 300 and "characters)" in message
+
+
+@pytest.mark.parametrize(
+    ("value", "allowed"),
+    [(10**400, False), (-(10**400), False), (1e308, False), (2.5, True), (3, True)],
+)
+def test_number_field_refuses_integers_beyond_floats_as_out_of_range(value, allowed) -> None:
+    """float(10**400) raises OverflowError; it must be an out-of-range FieldError."""
+    if allowed:
+        assert number_field(value, "x", 0.0, 10.0) == float(value)
+        return
+    with pytest.raises(FieldError, match=r"x = -?inf is outside|x = 1e\+308 is outside"):
+        number_field(value, "x", 0.0, 10.0)
+
+
+@pytest.mark.parametrize(
+    "value", ["", "x" * (MAX_NAME + 1), "a/b", "..", ".", "a\nb", "tab\there", None, [1], True]
+)
+def test_names_that_cannot_be_part_of_a_file_name_are_refused(value) -> None:
+    with pytest.raises(FieldError) as info:
+        name_field(value)
+    assert str(info.value).startswith("name") and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("value", ["default", "my sweep", "a.b-c_d", "x" * MAX_NAME, 7])
+def test_ordinary_names_are_kept(value) -> None:
+    assert name_field(value) == str(value)
+
+
+def test_mapping_keys_of_mixed_types_are_listed_not_compared() -> None:
+    """sorted() of {1, 'a'} raises TypeError; the unknown keys are named as text."""
+    with pytest.raises(FieldError, match=r"unknown key\(s\) \['1', 'b'\]"):
+        mapping_field({1: 0, "b": 0, "a": 0}, "doc", {"a"})

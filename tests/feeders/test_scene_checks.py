@@ -12,7 +12,13 @@ import pytest
 import shapely
 
 from feeders.scene_checks import overlap_depth, scene_problems
-from feeders.scene_yaml import SceneError, environment_from_dict, scene_from_dict
+from feeders.scene_yaml import (
+    MAX_TOTAL_VERTICES,
+    MAX_VERTICES,
+    SceneError,
+    environment_from_dict,
+    scene_from_dict,
+)
 
 BOX: dict[str, Any] = {
     "name": "box",
@@ -55,7 +61,10 @@ def test_the_sane_scene_has_no_problems() -> None:
         ("starts", {"drop": [0.0, 0.0, 1e308]}, "starts.drop"),  # yaw
         ("goal.x", [20, 30], "goal"),  # outside the bounds
         ("goal.y", [-2.5, 2.5], None),  # a sane, larger goal: no error (control case)
-        ("part", {"length": 100, "width": 50, "mass": 1, "heavy_fraction": 0.5}, "starts.drop"),
+        # longer than the bounds' diagonal (10 x 5: 11.2)
+        ("part", {"length": 100, "width": 50, "mass": 1, "heavy_fraction": 0.5}, "part.length"),
+        # fits, but not where it starts
+        ("part", {"length": 10, "width": 5, "mass": 1, "heavy_fraction": 0.5}, "starts.drop"),
     ],
 )
 def test_nonsense_is_refused_with_the_field_named(path: str, value: Any, names: str | None):
@@ -127,3 +136,21 @@ def test_overlap_depth_of_a_square_sunk_into_a_floor() -> None:
     square = np.array([[0.0, -0.1], [1.0, -0.1], [1.0, 0.9], [0.0, 0.9]])
     assert overlap_depth(floor, square) == pytest.approx(0.1)
     assert overlap_depth(floor, square + np.array([0.0, 0.2])) == 0.0
+
+
+def test_many_star_polygons_within_the_per_polygon_limit_are_refused_by_the_total() -> None:
+    """20 stars of 200 points each clipped in ~5 s (ear clipping is cubic): the total count
+    is checked before any geometry."""
+    doc = copy.deepcopy(BOX)
+    star = _star(MAX_VERTICES)
+    doc["obstacles"] += [{"polygon": [[x + 3 * k, y] for x, y in star]} for k in range(20)]
+    start = time.perf_counter()
+    with pytest.raises(SceneError, match=rf"at most {MAX_TOTAL_VERTICES} are allowed"):
+        scene_from_dict(doc)
+    assert time.perf_counter() - start < 5.0  # a hang guard, not a benchmark
+
+
+@pytest.mark.parametrize("name", ["../../etc/x", "x" * 5000, "", "a\nb", [1, 2]])
+def test_a_scene_name_that_cannot_name_a_file_is_refused(name) -> None:
+    with pytest.raises(SceneError, match=r"^name"):
+        scene_from_dict(_with("name", name))
