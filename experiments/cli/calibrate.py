@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from experiments.cli.usage import UsageError, check_time, out_dir
+from experiments.cli.usage import UsageError, check_count, check_time, out_dir
 
 PART_FILES = ("part-calibration.md", "part-calibration.json", "calibration-landscape.png")
 
@@ -46,9 +46,9 @@ def run(args: argparse.Namespace) -> int:
     from feeders.design import PRESETS
     from feeders.feeder import ORIENTATIONS
 
-    if args.runs < 1:
-        raise UsageError(f"--runs = {args.runs} must be >= 1")
+    check_count(args.runs, "--runs", 1000)
     check_time(args.time)
+    out = out_dir(args.out)
     with tqdm(total=len(PRESETS) * len(ORIENTATIONS), desc="calibrating", unit="run") as bar:
         rows = calibrate(
             runs=args.runs,
@@ -60,8 +60,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"\ncorners of the Table 2 box that build: {built} of {corners}")
     for reason, count in reasons.most_common():
         print(f"  rejected, {reason}: {count}")
-    if args.out is not None:
-        for path in draw_atlas(args.out):
+    if out is not None:
+        for path in draw_atlas(out):
             print(f"picture: {path}")
     return 0
 

@@ -6,21 +6,20 @@ import argparse
 from pathlib import Path
 
 from experiments.cli.scenes import add_scene_arguments, load_scene
-from experiments.cli.usage import UsageError
+from experiments.cli.usage import out_file
 
 
 def add_arguments(draw: argparse.ArgumentParser) -> None:
     add_scene_arguments(draw)
-    draw.add_argument("--out", type=Path, required=True, help="PNG file to write")
+    draw.add_argument(
+        "--out", type=Path, required=True, help="picture file to write (.png, .pdf or .svg)"
+    )
 
 
 def run(args: argparse.Namespace) -> int:
     from experiments.pictures.scenes import scene_figure
 
+    out = out_file(args.out, inputs=[args.scene] if args.scene else [])
     scene = load_scene(args.design, args.scene)
-    try:
-        args.out.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UsageError(f"--out: cannot create '{args.out.parent}': {exc.strerror}") from None
-    print(scene_figure([scene], [scene.name], args.out))
+    print(scene_figure([scene], [scene.name], out))
     return 0

@@ -13,7 +13,10 @@ another on the same designs and budgets (is the first level's feasible set a sub
 Building the parser imports only light modules (see the registry), so ``partfeeder --help``
 and a bad argument answer at once; numba, OMPL and matplotlib load in the subcommand that runs.
 
-Exit status: 0 done (whether or not a plan was found: see the output), 2 bad input.
+Exit status: 0 done (whether or not a plan was found: see the output), 2 bad input: one
+line on stderr, whether a subcommand found it (``UsageError``) or a reader or job below it did
+(:func:`experiments.cli.errors.input_error_line`); any other exception is a bug and keeps its
+traceback.
 """
 
 from __future__ import annotations
@@ -22,15 +25,25 @@ import argparse
 import sys
 from collections.abc import Sequence
 from types import ModuleType
+from typing import NoReturn
 
 from experiments.cli.console import exit_now, set_ompl_logging
+from experiments.cli.errors import input_error_line, one_line
 from experiments.cli.registry import SUBCOMMANDS
 from experiments.cli.usage import UsageError
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, whose errors are one line (argparse prints its usage block first,
+    several lines; ``--help`` still shows it). Subcommands' parsers are of this class too."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message} (see: {self.prog} --help)\n")
+
+
 def _parser() -> tuple[argparse.ArgumentParser, dict[str, ModuleType]]:
     """The parser of every registered subcommand, and the module that runs each one."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="partfeeder",
         description="Design part feeders by motion planning with physics (geometric, "
         "kinematic and dynamic levels on OMPL).",
@@ -52,8 +65,14 @@ def run(argv: Sequence[str] | None = None) -> int:
     try:
         return int(modules[args.command].run(args))
     except UsageError as exc:
-        print(f"partfeeder {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        line = str(exc)
+    except Exception as exc:
+        found = input_error_line(exc)
+        if found is None:
+            raise  # a bug, not bad input: keep its traceback
+        line = found
+    print(f"partfeeder {args.command}: error: {one_line(line)}", file=sys.stderr)
+    return 2
 
 
 def main(argv: Sequence[str] | None = None) -> None:

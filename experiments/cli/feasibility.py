@@ -11,8 +11,11 @@ import json
 import sys
 from pathlib import Path
 
-from experiments.cli.usage import SEED_RANGE, UsageError, check_time, out_dir
+from experiments.cli.usage import UsageError, check_count, check_seed, check_time, out_dir
 from experiments.names import LEVEL_NAMES, PLANNER_NAMES
+
+MAX_DESIGNS = 1_000_000  # as a sweep's designs.count
+MAX_WORKERS = 1024  # as a sweep's workers
 
 
 def add_arguments(feas: argparse.ArgumentParser) -> None:
@@ -60,20 +63,15 @@ def _options(args: argparse.Namespace) -> tuple[list[str], int]:
         raise UsageError(
             f"--levels: unknown level(s) {', '.join(unknown)}; levels: {', '.join(LEVEL_NAMES)}"
         )
-    if args.designs < 1:
-        raise UsageError(f"--designs = {args.designs} must be >= 1")
+    check_count(args.designs, "--designs", MAX_DESIGNS)
     if args.planner.lower() not in PLANNER_NAMES:
         raise UsageError(
             f"--planner '{args.planner}' is unknown; planners: {', '.join(sorted(PLANNER_NAMES))}"
         )
     check_time(args.time)
-    if not (SEED_RANGE[0] <= args.seed <= SEED_RANGE[1]):
-        raise UsageError(
-            f"--seed = {args.seed} is outside the allowed range [{SEED_RANGE[0]}, {SEED_RANGE[1]}]"
-        )
+    check_seed(args.seed)
     workers = args.workers if args.workers is not None else (os.cpu_count() or 1)
-    if workers < 1:
-        raise UsageError(f"--workers = {workers} must be >= 1")
+    check_count(workers, "--workers", MAX_WORKERS)
     return levels, workers
 
 

@@ -8,7 +8,7 @@ import json
 from pathlib import Path
 
 from experiments.cli.scenes import add_scene_arguments, load_scene, orientations
-from experiments.cli.usage import check_time, out_dir
+from experiments.cli.usage import check_seed, check_time, out_dir
 from experiments.names import LEVEL_NAMES, PLANNER_NAMES
 
 
@@ -33,9 +33,10 @@ def run(args: argparse.Namespace) -> int:
     from planners.plan import plan
 
     check_time(args.time)
+    check_seed(args.seed)
     scene = load_scene(args.design, args.scene)
     chosen = orientations(scene, args.orientation)
-    out = out_dir(args.out)
+    out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
     results = [plan(scene, args.level, args.planner, o, args.time, args.seed) for o in chosen]
     figure = None
     if out is not None:

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from experiments.cli.report import finish
-from experiments.cli.usage import UsageError
+from experiments.cli.usage import UsageError, out_dir
 from experiments.names import EXECUTOR_NAMES
 
 DEFAULT_OUT = Path("sweep")
@@ -86,9 +86,24 @@ class _Bars:
             bar.close()
 
 
+def _executor(args: argparse.Namespace) -> None:
+    """``--executor`` and ``--scheduler`` agree, and a Dask scheduler answers (within about
+    2 s: :func:`experiments.sweep.executors.check_scheduler`), before anything is written."""
+    if args.executor != "dask":
+        if args.scheduler is not None:
+            raise UsageError("--scheduler is only for --executor dask")
+        return
+    if not args.scheduler:
+        raise UsageError("--executor dask needs --scheduler ADDRESS (tcp://host:port)")
+    from experiments.sweep.executors import check_scheduler
+
+    check_scheduler(args.scheduler)
+
+
 def run(args: argparse.Namespace) -> int:
     from experiments.sweep.config import ConfigError, config_from_dict, load_config
     from experiments.sweep.ladder import export_ompl, run_sweep
+    from experiments.sweep.lock import sweep_lock
     from experiments.sweep.results_db import ResultsMismatch
 
     try:
@@ -102,25 +117,26 @@ def run(args: argparse.Namespace) -> int:
             config = config_from_dict({**config.to_dict(), **overrides})
     except ConfigError as exc:
         raise UsageError(str(exc)) from None
-    out = args.out or DEFAULT_OUT / config.name
+    _executor(args)
+    out = out_dir(args.out or DEFAULT_OUT / config.name, inputs=[Path(args.config)])
+    assert out is not None
     bars = _Bars(args.quiet or args.json)
-    t0 = time.perf_counter()
-    try:
-        results = run_sweep(config, out, args.executor, args.scheduler, progress=bars)
-    except ResultsMismatch as exc:
-        raise UsageError(f"{out}: {exc}") from None
-    except ValueError as exc:
-        raise UsageError(str(exc)) from None
-    except KeyboardInterrupt:
-        bars.close()
-        print(
-            f"partfeeder run: interrupted; results so far are in {out}; "
-            "run the same command again to resume",
-            file=sys.stderr,
-        )
-        return 130
-    finally:
-        bars.close()
-    wall = time.perf_counter() - t0
-    export_ompl(results, out / "ompl")
-    return finish(out, args, {"wall_time_s": wall})
+    with sweep_lock(out):
+        t0 = time.perf_counter()
+        try:
+            results = run_sweep(config, out, args.executor, args.scheduler, progress=bars)
+        except ResultsMismatch as exc:
+            raise UsageError(f"{out}: {exc}") from None
+        except KeyboardInterrupt:
+            bars.close()
+            print(
+                f"partfeeder run: interrupted; results so far are in {out}; "
+                "run the same command again to resume",
+                file=sys.stderr,
+            )
+            return 130
+        finally:
+            bars.close()
+        wall = time.perf_counter() - t0
+        export_ompl(results, out / "ompl")
+        return finish(out, args, {"wall_time_s": wall})

@@ -51,11 +51,6 @@ def load_scene(design: str | None, scene_file: Path | None) -> Scene:
                     f"--design: '{shown(spec)}' is not 12 comma-separated numbers"
                 ) from None
             scene = build_feeder(DesignParameters.from_vector(values), name="custom design")
-        elif spec not in PRESET_NAMES:
-            raise UsageError(
-                f"--design '{shown(spec)}' is not a preset ({', '.join(sorted(PRESET_NAMES))}) "
-                "nor 12 comma-separated values"
-            )
         else:
             scene = build_feeder(preset(spec), name=spec)
         return checked_scene(scene)

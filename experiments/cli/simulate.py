@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     if args.samples:
         return _verdict(scene, args)
     chosen = orientations(scene, args.orientation)
-    out = out_dir(args.out)
+    out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
     results = [passive_drop(scene, o, step=args.step, t_max=args.time) for o in chosen]
     files: list[str] = []
     if out is not None:

@@ -152,6 +152,83 @@ def run_local(
         pool.shutdown(wait=True, cancel_futures=True)
 
 
+SCHEDULER_TIMEOUT_S = 2.0  # to reach the scheduler and hear it answer
+
+
+class SchedulerUnreachable(ValueError):
+    """The Dask scheduler address is malformed, or nothing there answers as a scheduler."""
+
+
+def scheduler_endpoint(address: str) -> tuple[str, int]:
+    """(host, port) of a scheduler address ``tcp://host:port`` (``tls://`` too, or just
+    ``host:port``); :class:`SchedulerUnreachable` naming the address if it is not one."""
+    text = address.strip()
+    scheme, sep, rest = text.partition("://")
+    if not sep:
+        scheme, rest = "tcp", text
+    host, colon, port = rest.rpartition(":")
+    host = host.strip("[]")  # [::1]:8786
+    if scheme not in ("tcp", "tls") or not colon or not host or "/" in rest:
+        raise SchedulerUnreachable(
+            f"--scheduler '{address}' is not a scheduler address; expected tcp://host:port"
+        )
+    if not port.isdigit() or not 1 <= int(port) <= 65535:
+        raise SchedulerUnreachable(
+            f"--scheduler '{address}': the port must be a number in [1, 65535]"
+        )
+    return host, int(port)
+
+
+async def _identity(address: str, timeout: float) -> Any:
+    from distributed.comm import connect
+
+    comm = await connect(address, timeout=timeout)
+    try:
+        await comm.write({"op": "identity", "reply": True})
+        return await comm.read()
+    finally:
+        comm.abort()
+
+
+def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
+    """Fail fast unless a Dask scheduler answers at ``address`` within about ``timeout``
+    seconds: a plain TCP connection first (a refused port or an unknown host fails at once),
+    then Dask's ``identity`` call, whose reply must say ``Scheduler``. Without it, Dask's
+    ``Client`` waits 30 s and ends in a traceback; something else listening on the port can
+    even answer with bytes Dask reads as a 3-exabyte message. Raises
+    :class:`SchedulerUnreachable` naming the address."""
+    import asyncio
+    import socket
+
+    host, port = scheduler_endpoint(address)
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        raise SchedulerUnreachable(
+            "the dask executor needs Dask's distributed scheduler: "
+            "pip install 'partfeeder[dask]' (or: pip install distributed)"
+        ) from None
+    try:
+        socket.create_connection((host, port), timeout=timeout).close()
+    except OSError as exc:
+        reason = exc.strerror or str(exc) or type(exc).__name__
+        raise SchedulerUnreachable(
+            f"--scheduler '{address}': cannot connect to {host}:{port} ({reason})"
+        ) from None
+    url = address if "://" in address else f"tcp://{address}"
+    try:
+        reply = asyncio.run(asyncio.wait_for(_identity(url, timeout), timeout + 1.0))
+    except Exception as exc:  # anything the other end says that is not a scheduler's reply
+        raise SchedulerUnreachable(
+            f"--scheduler '{address}': no Dask scheduler answers there "
+            f"({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else 'no reply'})"
+        ) from None
+    if not isinstance(reply, dict) or reply.get("type") != "Scheduler":
+        raise SchedulerUnreachable(
+            f"--scheduler '{address}': what answers there is not a Dask scheduler"
+        )
+
+
 def run_dask(
     evaluate: Evaluate,
     jobs: Iterable[Job],
@@ -180,7 +257,8 @@ def run_dask(
     import dask
 
     deaths = int(dask.config.get("distributed.scheduler.allowed-failures", 3)) + 1
-    with Client(scheduler, set_as_default=False) as client:
+    check_scheduler(scheduler)
+    with Client(scheduler, set_as_default=False, timeout=10) as client:
         client.run(quiet_worker)
         futures = {}
         for job in jobs:

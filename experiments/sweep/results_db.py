@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import sqlite3
+import stat
 import time
 from collections.abc import Iterable
 from pathlib import Path
@@ -105,12 +106,92 @@ class ResultsMismatch(ValueError):
     """The database holds the results of another config."""
 
 
-def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
-    """Open a results database (created if missing, unless ``readonly``)."""
+class ResultsDamaged(ValueError):
+    """The file is not a sound results database: damaged, truncated or of another schema."""
+
+
+SQLITE_HEADER = b"SQLite format 3\x00"
+FULL_CHECK_BYTES = 256 << 20  # ``integrity_check`` up to this size, ``quick_check`` above
+
+
+def _damaged(path: Path, problem: str) -> ResultsDamaged:
+    return ResultsDamaged(
+        f"results database '{path}' {problem}; nothing was written to it: move it aside "
+        "(or delete it) and run the same command again to redo the sweep"
+    )
+
+
+def _expected_columns() -> dict[str, list[str]]:
+    """Table -> column names of ``_SCHEMA``, from an empty in-memory database built by it."""
+    db = sqlite3.connect(":memory:")
+    try:
+        db.executescript(_SCHEMA)
+        return _columns(db)
+    finally:
+        db.close()
+
+
+def _columns(db: sqlite3.Connection) -> dict[str, list[str]]:
+    tables = [
+        r[0]
+        for r in db.execute(
+            "SELECT name FROM sqlite_master WHERE type = 'table' AND name NOT LIKE 'sqlite_%'"
+        )
+    ]
+    return {t: [r[1] for r in db.execute(f'PRAGMA table_info("{t}")')] for t in tables}
+
+
+def check_database(path: str | Path) -> bool:
+    """Refuse (:class:`ResultsDamaged`) a file at ``path`` that is not a sound results
+    database, reading only: a header that is not SQLite's, a file that SQLite finds damaged
+    (``PRAGMA integrity_check``, or ``quick_check`` above ``FULL_CHECK_BYTES``: it skips
+    matching indexes to tables, and is linear in the file), or tables other than ours. A
+    missing or empty file passes (it becomes a new database). Damage that leaves every page
+    well-formed (a changed digit inside a stored number) is not detectable: SQLite keeps no
+    checksums. Returns whether it holds our tables (False: missing, empty or new)."""
     path = Path(path)
+    try:
+        info = path.stat()
+    except FileNotFoundError:
+        return False
+    if not stat.S_ISREG(info.st_mode):  # a FIFO would block the read below
+        raise _damaged(path, "is not a regular file")
+    size = info.st_size
+    if size == 0:
+        return False
+    with path.open("rb") as handle:
+        header = handle.read(len(SQLITE_HEADER))
+    if header != SQLITE_HEADER:
+        raise _damaged(path, "is not an SQLite database (its header is wrong)")
+    check = "integrity_check" if size <= FULL_CHECK_BYTES else "quick_check"
+    columns: dict[str, list[str]] = {}
+    try:
+        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
+        try:
+            rows = [r[0] for r in db.execute(f"PRAGMA {check}(1)")]
+            if rows == ["ok"]:
+                columns = _columns(db)
+        finally:
+            db.close()
+    except sqlite3.DatabaseError as exc:
+        raise _damaged(path, f"cannot be read ({exc})") from None
+    if rows != ["ok"]:
+        raise _damaged(path, f"is damaged (SQLite's {check}: {rows[0] if rows else 'no answer'})")
+    if columns and columns != _expected_columns():
+        raise _damaged(path, "has tables that are not a partfeeder results database's")
+    return bool(columns)
+
+
+def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
+    """Open a results database (created if missing, unless ``readonly``), after
+    :func:`check_database` has found it sound."""
+    path = Path(path)
+    ours = check_database(path)
     if readonly:
         if not path.exists():
             raise FileNotFoundError(f"no results database at '{path}'")
+        if not ours:
+            raise _damaged(path, "holds no partfeeder results (it is empty)")
         db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
     else:
         path.parent.mkdir(parents=True, exist_ok=True)

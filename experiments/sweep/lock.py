@@ -1,0 +1,69 @@
+"""One ``partfeeder run`` per sweep directory at a time.
+
+Two runs on one directory would both write the results database (SQLite keeps that
+consistent) and both rebuild ``ompl/benchmark.db`` (one of them then dies of a
+``disk I/O error``). :func:`sweep_lock` holds an exclusive ``fcntl.flock`` on ``LOCK_FILE`` in
+the directory for the whole run; a second run finds it held and raises
+:class:`DirectoryInUse` naming the holder (pid, host, start time, written into the lock file
+by the holder).
+
+The lock belongs to the open file, not to the file on disk: the operating system releases it
+when the holding process ends in any way, ``kill -9`` included, so a stale lock left by a
+killed run is simply taken over by the next one (its old holder line is overwritten). The
+descriptor is not inherited by worker processes (close-on-exec; the executors spawn their
+workers), so a worker that outlives a killed run does not keep the directory locked.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import json
+import os
+import socket
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+LOCK_FILE = "partfeeder.lock"
+
+
+class DirectoryInUse(ValueError):
+    """The sweep directory is locked by a running ``partfeeder run``."""
+
+
+def _holder_text(fd: int) -> str:
+    """The holder as the lock file describes it: 'pid P on host H since T'."""
+    try:
+        raw = os.pread(fd, 4096, 0)
+        info = json.loads(raw.decode("utf-8"))
+        return f"pid {info['pid']} on host {info['host']} since {info['started']}"
+    except (OSError, ValueError, KeyError, TypeError):  # being written, or not ours
+        return "a process that has not said who it is yet"
+
+
+@contextmanager
+def sweep_lock(directory: str | Path) -> Iterator[Path]:
+    """Hold the lock of the existing sweep directory ``directory`` while inside; raises
+    :class:`DirectoryInUse` at once (no waiting) if another process holds it. Yields the
+    lock file's path."""
+    path = Path(directory) / LOCK_FILE
+    fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise DirectoryInUse(
+                f"'{directory}' is in use by another partfeeder run ({_holder_text(fd)}); "
+                "wait for it to finish, or give another --out"
+            ) from None
+        holder = {
+            "pid": os.getpid(),
+            "host": socket.gethostname(),
+            "started": time.strftime("%Y-%m-%d %H:%M:%S %z"),
+        }
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, json.dumps(holder).encode("utf-8"), 0)
+        yield path
+    finally:
+        os.close(fd)  # releases the lock
