@@ -36,7 +36,7 @@ from feeders.scene import Goal, InputSet, Pose, Scene, wrap_angle
 from feeders.shapes import Obstacles
 
 WALL_THICKNESS = 0.4
-DEFAULT_FRICTION = 0.3  # Coulomb mu of the feeder's walls unless a scene or config says otherwise
+DEFAULT_FRICTION = 0.05  # walls' Coulomb mu unless a scene says otherwise (docs/calibration.md)
 START_CLEARANCE = 0.05  # gap between the part and the cap at the top of the input chute
 # The feeder's two entries: the peg enters heavy end first or last; a design must serve both.
 ORIENTATIONS = ("heavy_leading", "heavy_trailing")

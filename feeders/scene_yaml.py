@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from feeders.design import DesignError, DesignParameters, preset
-from feeders.feeder import DegenerateDesign, build_feeder
+from feeders.feeder import DEFAULT_FRICTION, DegenerateDesign, build_feeder
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -41,7 +41,7 @@ from feeders.fields import (
 )
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
-from feeders.scene_checks import MAX_STARTS, gravity_problem, scene_problems
+from feeders.scene_checks import MAX_COORDINATE, MAX_STARTS, gravity_problem, scene_problems
 from feeders.shapes import Obstacles, ShapeError, convex_pieces
 
 MAX_VERTICES = 200  # points of one polygon: ear clipping is cubic in them (0.1 s at 200)
@@ -102,6 +102,16 @@ def _design(spec: Any) -> DesignParameters:
         raise SceneError(f"feeder: {exc}") from None
 
 
+def _point(value: Any, field: str) -> list[float]:
+    """An [x, y] point within the coordinates allowed (checked before any geometry: shapely
+    and the ear clipping overflow on 1e308)."""
+    x, y = numbers_field(value, field, 2)
+    for name, v in (("x", x), ("y", y)):
+        if abs(v) > MAX_COORDINATE:
+            raise SceneError(f"{field}: {name} = {v:g} must lie within +-{MAX_COORDINATE:g}")
+    return [x, y]
+
+
 def _count_points(spec: list[Any]) -> None:
     """Refuse a polygon of more than ``MAX_VERTICES`` points, or more than
     ``MAX_TOTAL_VERTICES`` in all, before any geometry (ear clipping is cubic in them)."""
@@ -138,7 +148,7 @@ def _obstacles(spec: Any) -> Obstacles:
             pts = item["polygon"]
             if not isinstance(pts, list):
                 raise SceneError(f"{field}.polygon: expected a list of [x, y] points")
-            pts = [numbers_field(p, f"{field}.polygon[{k}]", 2) for k, p in enumerate(pts)]
+            pts = [_point(p, f"{field}.polygon[{k}]") for k, p in enumerate(pts)]
             try:
                 pieces = convex_pieces(pts, field=f"{field}.polygon")
             except ShapeError as exc:
@@ -149,7 +159,7 @@ def _obstacles(spec: Any) -> Obstacles:
             c = mapping_field(item["circle"], f"{field}.circle", {"centre", "radius"})
             if "centre" not in c or "radius" not in c:
                 raise SceneError(f"{field}.circle: needs 'centre' and 'radius'")
-            cx, cy = numbers_field(c["centre"], f"{field}.circle.centre", 2)
+            cx, cy = _point(c["centre"], f"{field}.circle.centre")
             circles.append((cx, cy, number_field(c["radius"], f"{field}.circle.radius", 1e-9, 1e6)))
             labels_c.append(label)
     return Obstacles(
@@ -195,7 +205,9 @@ def environment_from_dict(data: dict[str, Any], prefix: str = "") -> dict[str, A
     try:
         return {
             "part": _part(data.get("part")),
-            "friction": number_field(data.get("friction", 0.3), f"{prefix}friction", 0.0, 10.0),
+            "friction": number_field(
+                data.get("friction", DEFAULT_FRICTION), f"{prefix}friction", 0.0, 10.0
+            ),
             "restitution": number_field(
                 data.get("restitution", 0.3), f"{prefix}restitution", 0.0, 1.0
             ),

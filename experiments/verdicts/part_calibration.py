@@ -460,7 +460,7 @@ def markdown(landscape: Landscape) -> str:
         "",
         "Its neighbours (one grid step along one axis):",
         "",
-        "| axis moved" + head,
+        "| axis moved " + head,
         "|---|---|---|---|---|---|---|---|---|",
     ]
     lines.append(_row(landscape.chosen, axis="(chosen)"))

@@ -24,7 +24,8 @@ B_RANGE = (1.1, 1.3)
 
 CASES = [
     # (length, width, mass, heavy_fraction)
-    (1.6, 1.0, 1.0, 0.75),  # the defaults
+    (2.2, 0.7, 1.0, 0.9),  # the defaults (docs/calibration.md)
+    (1.6, 1.0, 1.0, 0.75),  # the defaults before the calibration
     (2.0, 1.0, 1.0, 0.75),
     (2.0, 1.0, 1.0, 0.5),  # uniform
     (2.0, 1.0, 1.0, 1.0),  # all the mass in one half
@@ -75,11 +76,12 @@ def test_uniform_and_one_sided_limits_match_closed_forms():
 
 
 def test_default_peg_is_the_default_two_density_peg():
-    """Reference: grid integration for L = 1.6, w = 1, m = 1, heavy half 3/4 (offset 0.2,
-    inertia 77/300)."""
-    _, cx, _, inertia = _grid_moments(1.6, 1.0, 1.0, 0.75)
+    """The calibrated defaults (docs/calibration.md) L = 2.2, w = 0.7, m = 1, heavy half 0.9.
+    Reference: grid integration (offset (0.9 - 0.1) * 2.2 / 4 = 0.44)."""
+    _, cx, _, inertia = _grid_moments(2.2, 0.7, 1.0, 0.9)
+    assert cx == pytest.approx(0.44, rel=1e-9)
     for peg in (Peg(), DEFAULT_PEG, Peg.two_density()):
-        assert (peg.length, peg.width, peg.mass) == (1.6, 1.0, 1.0)
+        assert (peg.length, peg.width, peg.mass) == (2.2, 0.7, 1.0)
         assert peg.com_offset == pytest.approx(cx, rel=1e-9)
         assert peg.inertia == pytest.approx(inertia, rel=1e-5)
 
@@ -113,13 +115,13 @@ def test_heavy_end_points_along_plus_x():
     """The heavy end is the end of larger x: it is the nearer end to the centre of mass."""
     vertices = DEFAULT_PEG.body_vertices()
     heavy_end, light_end = vertices[:, 0].max(), -vertices[:, 0].min()
-    # L = 1.6, offset 0.2: heavy end 0.8 - 0.2 from the centre of mass, light end 0.8 + 0.2.
-    assert heavy_end == pytest.approx(0.6) and light_end == pytest.approx(1.0)
+    # L = 2.2, offset 0.44: heavy end 1.1 - 0.44 from the centre of mass, light end 1.1 + 0.44.
+    assert heavy_end == pytest.approx(0.66) and light_end == pytest.approx(1.54)
 
 
 def test_bounding_radius_is_the_farthest_corner():
     """Reference: the light-end corners, at (L/2 + offset, w/2) from the centre of mass."""
-    assert DEFAULT_PEG.bounding_radius() == pytest.approx(math.hypot(1.0, 0.5), rel=1e-12)
+    assert DEFAULT_PEG.bounding_radius() == pytest.approx(math.hypot(1.54, 0.35), rel=1e-12)
 
 
 # --- the default peg makes the paper's designs physical -------------------------------------
@@ -134,7 +136,7 @@ def _extent_across(peg: Peg, yaw: float) -> float:
 
 def test_default_peg_slides_in_both_chutes():
     """Reference: Table 2, a >= 1.1 and b >= 1.1: lying along a chute the peg needs a strip as
-    wide as it is (extent across at yaw 0 is w = 1), which is narrower than either chute."""
+    wide as it is (extent across at yaw 0 is w = 0.7), which is narrower than either chute."""
     assert DEFAULT_PEG.width < min(A_RANGE[0], B_RANGE[0])
     assert _extent_across(DEFAULT_PEG, 0.0) == pytest.approx(DEFAULT_PEG.width)
     assert _extent_across(DEFAULT_PEG, 0.0) < A_RANGE[0]
@@ -142,7 +144,7 @@ def test_default_peg_slides_in_both_chutes():
 
 def test_default_peg_cannot_turn_end_for_end_in_either_chute():
     """Turning end for end in a strip, the peg's yaw passes pi/2 (continuity), where its extent
-    across the strip equals its length; the widest Table 2 chute is 1.3 < 2. Reference: shapely
+    across the strip equals its length; the widest Table 2 chute is 1.3 < 2.2. Reference: shapely
     extents of the rotated body against the analytic L |sin| + w |cos|."""
     peg = DEFAULT_PEG
     yaws = np.linspace(0.0, math.pi, 181)
@@ -167,9 +169,9 @@ def test_peg_is_frozen():
     [
         ({"length": 0.0}, "length", "[0.001, 100]"),
         ({"length": math.nan}, "length", "[0.001, 100]"),
-        ({"width": 2.5}, "width", "[0.001, 1.6]"),  # wider than long
+        ({"width": 2.5}, "width", "[0.001, 2.2]"),  # wider than the default length
         ({"mass": -1.0}, "mass", "[1e-09, 1e+09]"),
-        ({"com_offset": 1.5}, "com_offset", "[0, 0.8]"),  # centre of mass outside the peg
+        ({"com_offset": 1.5}, "com_offset", "[0, 1.1]"),  # outside the peg (L/2 = 1.1)
         ({"inertia": 0.0}, "inertia", "[1e-12, 1e+12]"),
     ],
 )

@@ -19,7 +19,7 @@ import yaml
 from shapely.geometry import Point, Polygon
 
 from feeders.design import PRESETS
-from feeders.feeder import build_feeder
+from feeders.feeder import DEFAULT_FRICTION, build_feeder
 from feeders.part import Peg
 from feeders.scene import Scene
 from feeders.scene_yaml import SceneError, load_scene, scene_from_dict
@@ -95,14 +95,15 @@ def test_example_scene_loads_and_says_what_it_is_for(name):
 
 
 def test_table3_scene_is_the_table3_feeder():
-    """Reference: build_feeder of the paper's Table 3 design (values typed in) at mu = 0.3."""
+    """Reference: build_feeder of the paper's Table 3 design (values typed in) with the default
+    part and friction (the file spells out mu = 0.05, the calibrated default)."""
     scene = load_scene(SCENES / "table3.yaml")
     assert scene.design.to_dict() == {
         "a": 1.1, "b": 1.1086, "c": 0.7979, "d": 3.0078, "e": -1.9, "fx": -0.9849,
         "fy": 1.0098, "gx": 0.733, "gy": 2.0388, "r": 0.101, "theta": 0.4673, "alpha": 1.0472,
     }  # fmt: skip
-    assert scene.friction == 0.3
-    _assert_same_scene(scene, build_feeder(PRESETS["table3"], friction=0.3, name="table3"))
+    assert scene.friction == 0.05 == DEFAULT_FRICTION
+    _assert_same_scene(scene, build_feeder(PRESETS["table3"], name="table3"))
 
 
 def test_custom_design_scene_is_the_fig4_feeder():
@@ -246,7 +247,7 @@ def test_free_form_scene_fields():
     goal = scene.goal
     assert (goal.x_min, goal.x_max, goal.y_min, goal.y_max) == (-1.0, 1.0, 1.0, 2.0)
     assert (goal.yaw, goal.yaw_tol) == (0.0, 0.3)
-    assert scene.friction == 0.3 and scene.gravity == (0.0, -9.81)  # defaults
+    assert scene.friction == DEFAULT_FRICTION and scene.gravity == (0.0, -9.81)  # defaults
     assert scene.part == Peg.two_density()
 
 

@@ -26,6 +26,7 @@ from validity import make_level
 SEEDS = (1, 2, 3, 4, 5)
 BUDGET_S = 10.0
 STEP = PlannerSettings().step  # OMPL's propagation step (s)
+GOAL_THRESHOLD = 1e-9  # OMPL's goal threshold in planners/goals.py GoalBox
 
 
 @functools.cache
@@ -68,7 +69,11 @@ def test_planner_reaches_the_goal_with_the_dynamic_level(planner: str, orientati
                 state = level.propagate(state, control, STEP)
         np.testing.assert_allclose(state, result.path[-1], atol=1e-9)
         np.testing.assert_allclose(result.fine_path[-1], result.path[-1], atol=1e-9)
-        assert scene.goal.contains(tuple(state[:3]))
+        # in the goal as the planner judges it (GoalBox's threshold, planners/goals.py): a part
+        # resting on the chute's floor heavy end down sits on the box's bottom edge
+        # (y_min = floor + heavy end's reach), where rounding puts it 1e-16 either side
+        assert scene.goal.position_gap(state[0], state[1]) < GOAL_THRESHOLD
+        assert scene.goal.yaw_gap(state[2]) < GOAL_THRESHOLD
         assert all(level.is_valid(s) for s in result.fine_path)
         tolerance_area = level.penetration_tolerance * scene.part.length
         assert _overlap_area(scene, result.fine_path[::5]) < tolerance_area

@@ -71,7 +71,9 @@ def test_fcl_simple_cases(pose: tuple, expected: bool) -> None:
     part spans x in [0.75, 2.75] and reaches past the disc's centre."""
     wall = np.array([[-5.0, 1.0], [5.0, 1.0], [5.0, 3.0], [-5.0, 3.0]])
     scene = dataclasses.replace(
-        _table3(), obstacles=Obstacles((wall,), np.array([[2.5, 0.0, 0.5]]))
+        _table3(),
+        obstacles=Obstacles((wall,), np.array([[2.5, 0.0, 0.5]])),
+        part=Peg.two_density(length=2.0, width=1.0, heavy_fraction=0.75),
     )
     assert FclScene(scene).penetrates(pose) is expected
     assert (GeometricLevel(scene).clearance(pose) < 0) is expected
@@ -86,7 +88,7 @@ def test_fcl_accounts_for_centre_of_mass_offset() -> None:
     scene = dataclasses.replace(
         _table3(),
         obstacles=Obstacles((wall,), np.zeros((0, 3))),
-        part=Peg.two_density(length=2.0, width=1.0),
+        part=Peg.two_density(length=2.0, width=1.0, heavy_fraction=0.75),
     )
     reference = FclScene(scene)
     assert not reference.penetrates((0.25 - 1e-3, 0.0, 0.0))

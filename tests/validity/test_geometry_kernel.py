@@ -43,7 +43,7 @@ DISTANCE_TOL = 1e-9  # kernel distance vs shapely distance, separated shapes (le
 N_POSES = 20_000  # per scene
 HALTON_SEED = 7
 # The hand-worked cases below use this part: 2 x 1, centre of mass 0.25 toward the heavy end.
-PART = Peg.two_density(length=2.0, width=1.0)
+PART = Peg.two_density(length=2.0, width=1.0, heavy_fraction=0.75)
 BODY = PART.body_vertices()
 
 

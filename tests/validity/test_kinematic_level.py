@@ -290,8 +290,9 @@ def test_impacts_never_leave_the_part_faster_than_its_input() -> None:
 
 def test_validity_is_exact_non_penetration_bounds_and_the_speed_limit() -> None:
     level = KinematicLevel(_scene([FLOOR]))
-    assert level.is_valid((0.0, 0.5, 0.0, 0.0, 0.0, 0.0))  # touching the floor
-    assert not level.is_valid((0.0, 0.5 - 1e-9, 0.0, 0.0, 0.0, 0.0))
+    lying = DEFAULT_PEG.width / 2  # height of the centre of mass of the peg lying on the floor
+    assert level.is_valid((0.0, lying, 0.0, 0.0, 0.0, 0.0))  # touching the floor
+    assert not level.is_valid((0.0, lying - 1e-9, 0.0, 0.0, 0.0, 0.0))
     assert not level.is_valid((0.0, 5.0, 0.0, 0.0, 0.0, level.velocity_limit * 1.01))
     assert not level.is_valid((45.0, 5.0, 0.0, 0.0, 0.0, 0.0))
 
@@ -330,6 +331,7 @@ def test_telemetry_counts_impacts_only_where_the_part_meets_a_wall() -> None:
     free = level.run((0.0, 10.0, 0.0, 0, 0, 0), (1.0, -1.0, 1.0), 1.0, record=True)
     assert free.summary["impacts"] == 0 and free.summary["contact_steps"] == 0
     assert free.summary["sub_steps"] == len(free.telemetry)  # one advance per free step
-    pressed = level.run((0.0, 0.5 + 1e-3, 0.0, 0, 0, 0), (0.5, -1.0, 0.0), 1.0, record=True)
+    lying = DEFAULT_PEG.width / 2  # height of the centre of mass of the peg lying on the floor
+    pressed = level.run((0.0, lying + 1e-3, 0.0, 0, 0, 0), (0.5, -1.0, 0.0), 1.0, record=True)
     assert pressed.summary["impacts"] >= len(pressed.telemetry) - 1
     assert pressed.summary["jams"] == 0 and pressed.summary["stalls"] == 0
