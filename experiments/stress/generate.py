@@ -276,7 +276,7 @@ def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
         doc["inputs"] = inputs
     else:
         doc = {
-            "name": f"stress {seed}/{index} {family}",
+            "name": f"stress {seed}-{index} {family}",
             "obstacles": draw.document(),
             "bounds": list(bounds),
             "starts": {"case": list(pose)},
