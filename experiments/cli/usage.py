@@ -129,11 +129,11 @@ def out_file(path: Path, flag: str = "--out", inputs: Iterable[Path] = ()) -> Pa
     """A picture file to write: a suffix we draw (.png, .pdf, .svg), not a directory, not one
     of ``inputs``; its directory checked and made as :func:`out_dir`."""
     where = f"{flag} '{shown(path)}'"
-    if path.suffix.lower() not in PICTURE_SUFFIXES:
-        raise UsageError(f"{where}: the file name must end in {', '.join(PICTURE_SUFFIXES)}")
     for given in inputs:
         if _same_file(path, Path(given)):
             raise UsageError(f"{where} is the input file '{shown(given)}' itself")
+    if path.suffix.lower() not in PICTURE_SUFFIXES:
+        raise UsageError(f"{where}: the file name must end in {', '.join(PICTURE_SUFFIXES)}")
     if path.is_dir():
         raise UsageError(f"{where} is a directory; give a file name")
     problem = _name_problem(path)

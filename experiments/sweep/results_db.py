@@ -141,14 +141,110 @@ def _columns(db: sqlite3.Connection) -> dict[str, list[str]]:
     return {t: [r[1] for r in db.execute(f'PRAGMA table_info("{t}")')] for t in tables}
 
 
+def _header_problem(header: bytes, size: int) -> str | None:
+    """What SQLite's 100-byte file header says is wrong with a file of ``size`` bytes: not
+    SQLite's magic, a page size that is not a power of two in [512, 65536], a size that is not
+    a whole number of pages, or fewer pages than the header counts (a truncated file, whose
+    missing pages SQLite would read as zeros)."""
+    if len(header) < 100 or not header.startswith(SQLITE_HEADER):
+        return "is not an SQLite database (its header is wrong)"
+    page = int.from_bytes(header[16:18], "big")
+    page = 65536 if page == 1 else page
+    if page < 512 or page & (page - 1):
+        return f"has a damaged header (page size {page})"
+    if size % page:
+        return f"is truncated or damaged ({size} bytes is not a whole number of {page}-byte pages)"
+    counted = int.from_bytes(header[28:32], "big")
+    valid = header[92:96] == header[24:28]  # the count is current (SQLite >= 3.7.0)
+    if valid and counted * page > size:
+        return f"is truncated (its header counts {counted} pages, the file holds {size // page})"
+    return None
+
+
+def _content_problem(db: sqlite3.Connection) -> str | None:
+    """What in the stored rows cannot have been written by this module (damage inside a data
+    page that leaves the pages well-formed): text that is not UTF-8, a config that is not
+    JSON, designs that are not the config's Halton points, a status, level, flag, planner or
+    orientation outside their sets, a time or count that is negative, not finite or of the
+    wrong type. A changed digit within a plausible number remains undetectable."""
+    from feeders.halton import halton_points
+
+    db.text_factory = bytes  # decode here, to name the column
+    try:
+        meta = {}
+        for key, value in db.execute("SELECT key, value FROM meta"):
+            meta[key.decode("utf-8")] = value.decode("utf-8")
+        config = json.loads(meta.get("config", "{}"))
+        count, seed = int(config["designs"]["count"]), int(config["designs"]["seed"])
+        levels = tuple(rung["level"] for rung in config["ladder"])
+    except (UnicodeDecodeError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        return f"meta: the stored config cannot be read ({type(exc).__name__})"
+    finally:
+        db.text_factory = str
+    stored = db.execute(
+        f"SELECT design_id, holdout, {', '.join(PARAMETER_NAMES)} FROM designs ORDER BY design_id"
+    ).fetchall()
+    if stored:
+        expected = halton_points(count, seed)
+        ids = [row[0] for row in stored]
+        if ids != list(range(len(stored))) or len(stored) > count:
+            return "designs: the design ids are not those of the config"
+        values = [list(row[2:]) for row in stored]
+        if (
+            any(row[1] not in (0, 1) for row in stored)
+            or values != expected[: len(stored)].tolist()
+        ):
+            return "designs: the stored designs are not the config's Halton points"
+    names = {
+        "levels": ", ".join(f"'{lv}'" for lv in levels),
+        "statuses": ", ".join(f"'{s}'" for s in STATUSES),
+        "orientations": "'heavy_leading', 'heavy_trailing'",
+    }
+    checks = {
+        "evaluations": f"""level NOT IN ({names["levels"]}) OR status NOT IN ({names["statuses"]})
+            OR typeof(design_id) != 'integer' OR typeof(rung) != 'integer' OR rung < 0
+            OR rung >= {len(levels)} OR coalesce(heavy_leading, 0) NOT IN (0, 1)
+            OR coalesce(heavy_trailing, 0) NOT IN (0, 1) OR typeof(wall_time_s) != 'real'
+            OR NOT wall_time_s >= 0 OR typeof(attempts) != 'integer' OR attempts < 1""",
+        "runs": f"""level NOT IN ({names["levels"]}) OR orientation NOT IN ({names["orientations"]})
+            OR solved NOT IN (0, 1) OR approximate NOT IN (0, 1) OR typeof(run) != 'integer'
+            OR typeof(seed) != 'integer'
+            OR typeof(time_s) NOT IN ('real', 'integer', 'null') OR time_s < 0
+            OR typeof(exit_time_s) NOT IN ('real', 'integer', 'null') OR exit_time_s < 0
+            OR typeof(tree_size) NOT IN ('integer', 'null') OR tree_size < 0
+            OR typeof(propagations) NOT IN ('integer', 'null') OR propagations < 0
+            OR typeof(validity_checks) NOT IN ('integer', 'null') OR validity_checks < 0""",
+        "ompl_logs": f"""level NOT IN ({names["levels"]})
+            OR orientation NOT IN ({names["orientations"]}) OR typeof(log) != 'text'""",
+        "quarantine": f"""level NOT IN ({names["levels"]}) OR typeof(attempts) != 'integer'
+            OR typeof(reason) != 'text'""",
+    }
+    for table, condition in checks.items():
+        if db.execute(f"SELECT 1 FROM {table} WHERE {condition} LIMIT 1").fetchone():
+            return f"{table}: a row holds a value this program never writes"
+    texts = {  # every text column but the logs (most of the file; only export_ompl reads them)
+        "evaluations": "level, status, reason, worker",
+        "runs": "level, orientation, planner",
+        "quarantine": "level, reason",
+    }
+    for table, columns in texts.items():
+        try:
+            for _ in db.execute(f"SELECT {columns} FROM {table}"):
+                pass
+        except sqlite3.OperationalError as exc:  # text that is not UTF-8
+            return f"{table}: {exc}"
+    return None
+
+
 def check_database(path: str | Path) -> bool:
     """Refuse (:class:`ResultsDamaged`) a file at ``path`` that is not a sound results
     database, reading only: a header that is not SQLite's, a file that SQLite finds damaged
     (``PRAGMA integrity_check``, or ``quick_check`` above ``FULL_CHECK_BYTES``: it skips
-    matching indexes to tables, and is linear in the file), or tables other than ours. A
-    missing or empty file passes (it becomes a new database). Damage that leaves every page
-    well-formed (a changed digit inside a stored number) is not detectable: SQLite keeps no
-    checksums. Returns whether it holds our tables (False: missing, empty or new)."""
+    matching indexes to tables, and is linear in the file), tables other than ours, or rows
+    this module cannot have written (:func:`_content_problem`). A missing or empty file passes
+    (it becomes a new database). Damage that leaves every page and value well-formed (a changed
+    digit inside a plausible number) is not detectable: SQLite keeps no checksums. Returns
+    whether it holds our tables (False: missing, empty or new)."""
     path = Path(path)
     try:
         info = path.stat()
@@ -160,9 +256,10 @@ def check_database(path: str | Path) -> bool:
     if size == 0:
         return False
     with path.open("rb") as handle:
-        header = handle.read(len(SQLITE_HEADER))
-    if header != SQLITE_HEADER:
-        raise _damaged(path, "is not an SQLite database (its header is wrong)")
+        header = handle.read(100)
+    problem = _header_problem(header, size)
+    if problem:
+        raise _damaged(path, problem)
     check = "integrity_check" if size <= FULL_CHECK_BYTES else "quick_check"
     columns: dict[str, list[str]] = {}
     try:
@@ -171,6 +268,10 @@ def check_database(path: str | Path) -> bool:
             rows = [r[0] for r in db.execute(f"PRAGMA {check}(1)")]
             if rows == ["ok"]:
                 columns = _columns(db)
+                if columns == _expected_columns():
+                    content = _content_problem(db)
+                    if content:
+                        rows = [content]
         finally:
             db.close()
     except sqlite3.DatabaseError as exc:

@@ -1,0 +1,63 @@
+"""One ``partfeeder run`` per sweep directory (issue 16: two runs on one directory both ran,
+and one died of a ``disk I/O error``). The lock is an ``flock``: held while a run lives,
+released by the system however it ends, so a run killed with SIGKILL leaves nothing stale."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from experiments.sweep.lock import LOCK_FILE, DirectoryInUse, sweep_lock
+
+HOLD = """
+import sys, time
+from experiments.sweep.lock import sweep_lock
+with sweep_lock(sys.argv[1]):
+    print("held", flush=True)
+    time.sleep(600)
+"""
+
+
+def _holder(directory: Path) -> subprocess.Popen:
+    process = subprocess.Popen(
+        [sys.executable, "-c", HOLD, str(directory)], stdout=subprocess.PIPE, text=True
+    )
+    assert process.stdout is not None and process.stdout.readline().strip() == "held"
+    return process
+
+
+def test_a_directory_held_by_another_process_is_refused_naming_the_holder(tmp_path: Path):
+    holder = _holder(tmp_path)
+    try:
+        with pytest.raises(DirectoryInUse) as info, sweep_lock(tmp_path):
+            pass
+        message = str(info.value)
+        assert f"pid {holder.pid}" in message and socket.gethostname() in message
+        assert "since 20" in message and "\n" not in message
+    finally:
+        holder.kill()
+        holder.wait()
+
+
+def test_the_lock_of_a_process_killed_with_sigkill_is_taken_over(tmp_path: Path) -> None:
+    holder = _holder(tmp_path)
+    os.kill(holder.pid, signal.SIGKILL)
+    holder.wait()
+    stale = json.loads((tmp_path / LOCK_FILE).read_text())
+    assert stale["pid"] == holder.pid  # the dead holder's line is still there ...
+    with sweep_lock(tmp_path) as path:  # ... but the lock went with its process
+        assert json.loads(path.read_text())["pid"] == os.getpid()
+
+
+def test_the_lock_is_held_inside_and_free_after(tmp_path: Path) -> None:
+    with sweep_lock(tmp_path), pytest.raises(DirectoryInUse), sweep_lock(tmp_path):
+        pass  # a second open file description conflicts, even in the same process
+    with sweep_lock(tmp_path):
+        pass
