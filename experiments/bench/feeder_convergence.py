@@ -32,7 +32,7 @@ from scipy.stats import ks_2samp
 
 from experiments.drop.passive import passive_drop
 from experiments.drop.perturbations import Perturbations, draw
-from experiments.drop.verdict import _entry
+from experiments.drop.verdict import entry_state
 from experiments.proportions import wilson_interval
 from feeders.design import PRESETS, DesignParameters
 from feeders.feeder import ORIENTATIONS, build_feeder
@@ -74,7 +74,7 @@ def _drops(scene: Scene, h: float, drops: int, seed: int) -> list[dict]:
         d = draw(ENTRY_NOISE, seed, index, len(ORIENTATIONS))
         for k, orientation in enumerate(ORIENTATIONS):
             pose = scene.start(orientation)
-            start = _entry(level, pose, d.entry_offsets[k], d.entry_velocities[k])
+            start = entry_state(level, pose, d.entry_offsets[k], d.entry_velocities[k])
             r = passive_drop(scene, orientation, t_max=T_MAX, level=level, start=start)
             rows.append(
                 {

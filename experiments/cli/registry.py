@@ -37,7 +37,7 @@ SUBCOMMANDS: tuple[Subcommand, ...] = (
     Subcommand("calibrate", "experiments.cli.calibrate",
                "the geometric level's verdict on the paper's designs"),
     Subcommand("bench", "experiments.cli.bench",
-               "measure the speed of checks, propagation, planning"),
+               "work-precision diagrams, speed tables and the ladder's cost vs error"),
     Subcommand("feasibility", "experiments.cli.feasibility",
                "fraction of Halton designs feasible at level A vs level B "
                "(is A's set within B's?)"),

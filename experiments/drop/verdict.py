@@ -156,7 +156,9 @@ class Verdict:
         }
 
 
-def _entry(level: DynamicLevel, pose, offset, velocity) -> tuple[float, ...]:
+def entry_state(
+    level: DynamicLevel, pose: Sequence[float], offset: Sequence[float], velocity: Sequence[float]
+) -> tuple[float, ...]:
     """The perturbed entry state, the offset halved until the part is clear of every wall."""
     scale = 1.0
     for _ in range(ENTRY_RETRIES):
@@ -191,7 +193,7 @@ def run_trial(
     level = DynamicLevel(scene, step=settings.step)
     success, outcome, times = [], [], []
     for k, orientation in enumerate(orientations):
-        start = _entry(
+        start = entry_state(
             level,
             scene.start(orientation),
             perturbation.entry_offsets[k],
