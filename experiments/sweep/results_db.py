@@ -167,6 +167,7 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     JSON, designs that are not the config's Halton points, a status, level, flag, planner or
     orientation outside their sets, a time or count that is negative, not finite or of the
     wrong type. A changed digit within a plausible number remains undetectable."""
+    from experiments.names import LEVEL_NAMES
     from feeders.halton import halton_points
 
     db.text_factory = bytes  # decode here, to name the column
@@ -174,9 +175,11 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
         meta = {}
         for key, value in db.execute("SELECT key, value FROM meta"):
             meta[key.decode("utf-8")] = value.decode("utf-8")
-        config = json.loads(meta.get("config", "{}"))
-        count, seed = int(config["designs"]["count"]), int(config["designs"]["seed"])
-        levels = tuple(rung["level"] for rung in config["ladder"])
+        # a run killed between creating the file and claiming it stored no config yet
+        config = json.loads(meta["config"]) if "config" in meta else None
+        if config is not None:
+            count, seed = int(config["designs"]["count"]), int(config["designs"]["seed"])
+            levels = tuple(str(rung["level"]) for rung in config["ladder"])
     except (UnicodeDecodeError, ValueError, KeyError, TypeError, AttributeError) as exc:
         return f"meta: the stored config cannot be read ({type(exc).__name__})"
     finally:
@@ -184,16 +187,18 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     stored = db.execute(
         f"SELECT design_id, holdout, {', '.join(PARAMETER_NAMES)} FROM designs ORDER BY design_id"
     ).fetchall()
-    if stored:
+    if any(
+        row[1] not in (0, 1) or not all(isinstance(v, float) for v in row[2:]) for row in stored
+    ):
+        return "designs: a row holds a value this program never writes"
+    if config is None:
+        levels = LEVEL_NAMES
+    elif stored:
         expected = halton_points(count, seed)
         ids = [row[0] for row in stored]
         if ids != list(range(len(stored))) or len(stored) > count:
             return "designs: the design ids are not those of the config"
-        values = [list(row[2:]) for row in stored]
-        if (
-            any(row[1] not in (0, 1) for row in stored)
-            or values != expected[: len(stored)].tolist()
-        ):
+        if [list(row[2:]) for row in stored] != expected[: len(stored)].tolist():
             return "designs: the stored designs are not the config's Halton points"
     names = {
         "levels": ", ".join(f"'{lv}'" for lv in levels),

@@ -12,6 +12,7 @@ hangs or crawls fails the test. Derandomized, so a failure is reproducible.
 
 from __future__ import annotations
 
+import copy
 import math
 import tempfile
 from pathlib import Path
@@ -108,14 +109,14 @@ def _mutations(
 
 
 def _with_key(base: dict[str, Any], mapping: str, key: str) -> Any:
-    if not mapping:
-        return {**base, key: 1}
-    node: Any = base
-    for part in mapping.split("."):
+    """``base`` with ``key: 1`` added to the mapping at ``mapping`` (the top level when it
+    names a list)."""
+    doc = copy.deepcopy(base)
+    node: Any = doc
+    for part in mapping.split(".") if mapping else []:
         node = node[int(part)] if isinstance(node, list) else node[part]
-    if not isinstance(node, dict):
-        return {**base, key: 1}
-    return with_value(base, f"{mapping}.{key}", 1)
+    (node if isinstance(node, dict) else doc)[key] = 1
+    return doc
 
 
 def _check(capsys, argv: list[str], valid: bool) -> None:
