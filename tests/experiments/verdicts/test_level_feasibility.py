@@ -190,10 +190,10 @@ def test_compare_levels_refuses_bad_arguments():
     [
         (["--levels", "geometric,nosuch"], "--levels", "geometric"),
         (["--levels", "geometric"], "--levels", "two level names"),
-        (["--designs", "0"], "--designs", ">= 1"),
+        (["--designs", "0"], "--designs", "[1, 1000000]"),
         (["--time", "0"], "--time", "(0, 3600]"),
         (["--time", "4000"], "--time", "(0, 3600]"),
-        (["--workers", "0"], "--workers", ">= 1"),
+        (["--workers", "0"], "--workers", "[1, 1024]"),
         (["--planner", "nosuch"], "--planner", "rrt"),
         (["--seed", "0"], "--seed", "[1, "),
     ],
