@@ -12,13 +12,14 @@ so every round does the same planning work and the time measures speed only.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 
 import numpy as np
 import pytest
 
 from experiments.sweep.config import config_from_dict
-from experiments.sweep.job import SweepJob, evaluate_design
+from experiments.sweep.job import evaluate_design, sweep_job
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
 from planners.adapters import state_propagator, validity_checker
@@ -70,21 +71,8 @@ def test_bench_evaluate_design(benchmark, level: str) -> None:
             ],
         }
     )
-    rung = config.ladder[0]
-    job = SweepJob(
-        design_id=0,
-        values=[float(v) for v in PRESETS["table3"].to_vector()],
-        rung=0,
-        level=level,
-        planners=list(rung.planners),
-        runs=1,
-        time_s=rung.time_s,
-        propagations=rung.propagations,
-        feeder=config.feeder,
-        planner=config.planner,
-        seed=1,
-        name="bench",
-    )
+    values = [float(v) for v in PRESETS["table3"].to_vector()]
+    job = sweep_job(dataclasses.replace(config, seed=1, name="bench"), 0, values, 0)
     evaluate_design(job)  # compile before timing
     result = benchmark.pedantic(evaluate_design, args=(job,), rounds=5, iterations=1)
     benchmark.extra_info["status"] = result["status"]

@@ -10,6 +10,11 @@ from __future__ import annotations
 
 # validity.LEVELS, in the order of the ladder (the order matters: a sweep climbs it).
 LEVEL_NAMES = ("geometric", "kinematic", "dynamic")
+# The passive rung of a sweep: the design's verdict (experiments.drop.verdict), success
+# probability over perturbed passive drops; not a planning level, so not in validity.LEVELS.
+PASSIVE = "passive"
+# What a rung of a sweep's ladder can be.
+RUNG_NAMES = (*LEVEL_NAMES, PASSIVE)
 # planners.registry.PLANNERS, in its order.
 PLANNER_NAMES = ("rrt", "kpiece", "est")
 # feeders.design.PRESETS: the paper's designs (Figs. 4-9, Table 3).

@@ -47,7 +47,7 @@ class VerdictSettings:
     level's step h (s) and longest drop (s), and the perturbations."""
 
     target: float = 0.9
-    min_drops: int = 20
+    min_drops: int = 10
     batch: int = 10
     max_drops: int = 200
     step: float = DEFAULT_STEP
@@ -64,8 +64,12 @@ class VerdictSettings:
             ("t_max", self.t_max, 1e-3, 3600.0),
         )
         for name, value, low, high in checks:
-            if not (isinstance(value, int | float) and math.isfinite(value)):
+            if isinstance(value, bool) or not (
+                isinstance(value, int | float) and math.isfinite(value)
+            ):
                 raise ValueError(f"verdict.{name} = {value!r} must be a number")
+            if name in ("min_drops", "batch", "max_drops") and not isinstance(value, int):
+                raise ValueError(f"verdict.{name} = {value!r} must be a whole number")
             if not low <= value <= high:
                 raise ValueError(
                     f"verdict.{name} = {value!r} is outside the allowed range [{low:g}, {high:g}]"

@@ -17,6 +17,9 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
         runs: 1                           # runs per planner and entry orientation
         budget: {time: 0.5}               # s per run; or {propagations: 20000, time: 60}
       - ...
+      - level: passive                    # the design's verdict: success probability over
+        verdict: {target: 0.9, min_drops: 5, batch: 10, max_drops: 200}   # perturbed
+        perturbations: {position: 0.05, yaw: 0.05, speed: 0.05, friction: 0.2, tolerance: 0.01}
     holdout: {fraction: 0.25, seed: 7}    # designs that climb every rung whatever their
                                           # verdicts: the sample that measures the pruning
     workers: 2                            # processes (local executor)
@@ -33,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from experiments.names import LEVEL_NAMES, PLANNER_NAMES
+from experiments.names import LEVEL_NAMES, PASSIVE, PLANNER_NAMES, RUNG_NAMES
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -56,13 +59,36 @@ class ConfigError(FieldError):
 
 @dataclass(frozen=True)
 class Rung:
-    """One level of the ladder: its planners, runs per planner and orientation, budget."""
+    """One rung of the ladder. A planning level: its planners, runs per planner and
+    orientation, budget. The passive rung (``level: passive``): the verdict's settings and
+    perturbations (:class:`experiments.drop.verdict.VerdictSettings`,
+    :class:`experiments.drop.perturbations.Perturbations`), every field filled in."""
 
     level: str
     planners: tuple[str, ...]
     runs: int = 1
     time_s: float = 1.0
     propagations: int | None = None
+    verdict: dict[str, float] = field(default_factory=dict)
+    perturbations: dict[str, float] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The rung as its YAML mapping (normalised; plain data)."""
+        if self.level == PASSIVE:
+            return {
+                "level": self.level,
+                "verdict": dict(self.verdict),
+                "perturbations": dict(self.perturbations),
+            }
+        budget: dict[str, Any] = {"time": self.time_s}
+        if self.propagations is not None:
+            budget["propagations"] = self.propagations
+        return {
+            "level": self.level,
+            "planners": list(self.planners),
+            "runs": self.runs,
+            "budget": budget,
+        }
 
 
 @dataclass(frozen=True)
@@ -82,14 +108,7 @@ class SweepConfig:
 
     def to_dict(self) -> dict[str, Any]:
         """The config as the YAML document it came from (normalised; plain data)."""
-        ladder = []
-        for r in self.ladder:
-            budget: dict[str, Any] = {"time": r.time_s}
-            if r.propagations is not None:
-                budget["propagations"] = r.propagations
-            ladder.append(
-                {"level": r.level, "planners": list(r.planners), "runs": r.runs, "budget": budget}
-            )
+        ladder = [r.to_dict() for r in self.ladder]
         return {
             "name": self.name,
             "designs": {"count": self.count, "seed": self.seed},
@@ -110,12 +129,42 @@ class SweepConfig:
         return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
 
 
+def _passive_rung(spec: Any, field_name: str) -> Rung:
+    """The passive rung: its settings checked by the classes that use them."""
+    from experiments.drop.perturbations import Perturbations
+    from experiments.drop.verdict import VerdictSettings
+
+    spec = mapping_field(spec, field_name, {"level", "verdict", "perturbations"})
+    verdict = mapping_field(spec.get("verdict", {}) or {}, f"{field_name}.verdict", VERDICT_KEYS)
+    noise = mapping_field(
+        spec.get("perturbations", {}) or {},
+        f"{field_name}.perturbations",
+        set(Perturbations.__dataclass_fields__),
+    )
+    try:
+        perturbations = Perturbations(**noise)
+        settings = VerdictSettings(**verdict, perturbations=perturbations)
+    except ValueError as exc:
+        raise ConfigError(f"{field_name}.{exc}") from None
+    return Rung(
+        PASSIVE,
+        (),
+        verdict={k: getattr(settings, k) for k in sorted(VERDICT_KEYS)},
+        perturbations=perturbations.to_dict(),
+    )
+
+
+VERDICT_KEYS = {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
+
+
 def _rung(spec: Any, field_name: str) -> Rung:
+    if isinstance(spec, dict) and spec.get("level") == PASSIVE:
+        return _passive_rung(spec, field_name)
     spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget"})
     level = spec.get("level")
     if not isinstance(level, str) or level not in LEVEL_NAMES:
         raise ConfigError(
-            f"{field_name}.level = {shown(repr(level))}; allowed: {', '.join(LEVEL_NAMES)}"
+            f"{field_name}.level = {shown(repr(level))}; allowed: {', '.join(RUNG_NAMES)}"
         )
     planners = spec.get("planners", ["rrt"])
     if not isinstance(planners, list) or not planners:
@@ -184,9 +233,12 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
     levels = [r.level for r in ladder]
     if len(set(levels)) != len(levels):
         raise ConfigError(f"ladder: {levels} has a level twice")
-    order = [LEVEL_NAMES.index(level) for level in levels]
+    order = [LEVEL_NAMES.index(level) for level in levels if level != PASSIVE]
     if order != sorted(order):
-        raise ConfigError(f"ladder: {levels} must climb in order {', '.join(LEVEL_NAMES)}")
+        raise ConfigError(
+            f"ladder: {levels} must climb the planning levels in order {', '.join(LEVEL_NAMES)} "
+            f"(the {PASSIVE} rung may stand anywhere)"
+        )
     holdout = mapping_field(data.get("holdout", {}) or {}, "holdout", {"fraction", "seed"})
     fraction = number_field(holdout.get("fraction", 0.0), "holdout.fraction", 0.0, 1.0)
     holdout_seed = integer_field(holdout.get("seed", 0), "holdout.seed", 0, 2**31 - 1)

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from experiments.names import PASSIVE
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
@@ -38,6 +39,8 @@ class SweepJob(TypedDict):
     planner: dict[str, Any]  # OMPL's propagation settings (config's ``planner``)
     seed: int  # the sweep's
     name: str  # the sweep's
+    verdict: dict[str, Any]  # the passive rung's VerdictSettings fields ({} for a level)
+    perturbations: dict[str, float]  # the passive rung's Perturbations fields ({} for a level)
 
 
 def sweep_job(config: SweepConfig, design_id: int, values: list[float], rung: int) -> SweepJob:
@@ -56,6 +59,8 @@ def sweep_job(config: SweepConfig, design_id: int, values: list[float], rung: in
         planner=config.planner,
         seed=config.seed,
         name=config.name,
+        verdict=dict(r.verdict),
+        perturbations=dict(r.perturbations),
     )
 
 
@@ -75,29 +80,26 @@ def run_seed(sweep_seed: int, design_id: int, rung: int) -> int:
     return int(state % (2**31 - 1000))
 
 
+def verdict_seed(sweep_seed: int, design_id: int) -> int:
+    """The seed of a design's passive verdict: from the sweep's seed and the design only (not
+    the rung), so a design's verdict is the same whatever the ladder's order."""
+    state = np.random.SeedSequence([sweep_seed, design_id, 0x5EED]).generate_state(1)[0]
+    return int(state % (2**31 - 1))
+
+
 def evaluate_design(job: SweepJob) -> dict[str, Any]:
-    """Is the design feasible at the job's level? Plans it from the heavy-leading entry, then
-    the heavy-trailing one, each through OMPL's Benchmark with every planner of the rung,
-    ``runs`` runs each. An entry is solved when any run reaches the goal exactly (the planners
-    search for the same thing: one plan is a proof that the feeder can do it); the design is
-    feasible when both are. Once an entry fails the other is skipped: the verdict is known.
-    A design that cannot be built is ``degenerate``, with the reason.
-
-    Returns a dict for :func:`experiments.sweep.results_db.record`. ``job`` is checked
-    first (:func:`job_from_dict`): it may come from another process or machine.
-    """
-    from ompl import util as ou
-
-    from planners.benchmark import Budget, benchmark_problem
-    from planners.plan import PlannerSettings
-
-    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+    """The design's evaluation at the job's rung: its passive verdict at the passive rung
+    (:func:`evaluate_passive`), else whether it is feasible at the job's planning level."""
     job = job_from_dict(dict(job))
-    t0 = time.perf_counter()
-    design_id, level = int(job["design_id"]), str(job["level"])
-    result: dict[str, Any] = {
-        "design_id": design_id,
-        "level": level,
+    if job["level"] == PASSIVE:
+        return evaluate_passive(job)
+    return evaluate_planning(job)
+
+
+def _new_result(job: SweepJob) -> dict[str, Any]:
+    return {
+        "design_id": int(job["design_id"]),
+        "level": str(job["level"]),
         "status": "infeasible",
         "reason": None,
         "orientations": dict.fromkeys(ORIENTATIONS),
@@ -105,6 +107,70 @@ def evaluate_design(job: SweepJob) -> dict[str, Any]:
         "logs": {},
         "worker": f"{socket.gethostname()}:{os.getpid()}",
     }
+
+
+def evaluate_passive(job: SweepJob) -> dict[str, Any]:
+    """Does the design work as a passive feeder? Its verdict
+    (:func:`experiments.drop.verdict.design_verdict`) with the rung's settings and
+    perturbations, seeded by :func:`verdict_seed`, for the sweep's part and feeder. The
+    design passes the rung ("feasible") when it works: the Wilson lower bound of every entry
+    clears the target; an entry's flag says whether its own bound does. The verdict
+    (``Verdict.to_dict()``) and its seed travel in the result."""
+    from experiments.drop.perturbations import Perturbations
+    from experiments.drop.verdict import VerdictSettings, design_verdict
+
+    t0 = time.perf_counter()
+    result = _new_result(job)
+    values = [float(v) for v in job["values"]]
+    environment = environment_from_dict(job["feeder"])
+    settings = VerdictSettings(
+        **job["verdict"], perturbations=Perturbations(**job["perturbations"])
+    )
+    seed = verdict_seed(int(job["seed"]), int(job["design_id"]))
+    try:
+        verdict = design_verdict(
+            DesignParameters.from_vector(values),
+            part=environment.pop("part"),
+            friction=environment.pop("friction"),
+            settings=settings,
+            seed=seed,
+            **environment,
+        )
+    except DegenerateDesign as exc:
+        result["status"] = "degenerate"
+        result["reason"] = exc.reason
+        result["wall_time_s"] = time.perf_counter() - t0
+        return result
+    result["status"] = "feasible" if verdict.works else "infeasible"
+    if verdict.decision == "undecided":
+        result["reason"] = f"undecided after {verdict.drops} trials"
+    for orientation in ORIENTATIONS:
+        result["orientations"][orientation] = verdict.interval(orientation)[0] > settings.target
+    result["verdict"] = verdict.to_dict()
+    result["verdict_seed"] = seed
+    result["wall_time_s"] = time.perf_counter() - t0
+    return result
+
+
+def evaluate_planning(job: SweepJob) -> dict[str, Any]:
+    """Is the design feasible at the job's level? Plans it from the heavy-leading entry, then
+    the heavy-trailing one, each through OMPL's Benchmark with every planner of the rung,
+    ``runs`` runs each. An entry is solved when any run reaches the goal exactly (the planners
+    search for the same thing: one plan is a proof that the feeder can do it); the design is
+    feasible when both are. Once an entry fails the other is skipped: the verdict is known.
+    A design that cannot be built is ``degenerate``, with the reason.
+
+    Returns a dict for :func:`experiments.sweep.results_db.record`.
+    """
+    from ompl import util as ou
+
+    from planners.benchmark import Budget, benchmark_problem
+    from planners.plan import PlannerSettings
+
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+    t0 = time.perf_counter()
+    design_id, level = int(job["design_id"]), str(job["level"])
+    result = _new_result(job)
     values = [float(v) for v in job["values"]]
     try:
         scene = build_feeder(

@@ -15,6 +15,10 @@ Tables (one row per ...):
   validity_checks, exit_time_s (the solution's duration, Eq. 10; NULL unless solved).
 - ``ompl_logs``: OMPL's benchmark log of a (design, level, orientation).
 - ``quarantine``: a (design, level) whose worker died ``attempts`` times, and why.
+- ``verdicts``: a design's passive verdict (the ``passive`` rung): ``decision`` (works /
+  fails / undecided), ``target``, ``trials``, successes per entry and of both, the mean exit
+  time of each entry's successful drops, the verdict's ``seed`` and the whole verdict as JSON
+  (``experiments.drop.verdict.Verdict.to_dict``: intervals, transition matrix).
 
 Each evaluation is stored with its runs and logs in one transaction, keyed by (design, level):
 a sweep killed at any moment loses at most the evaluations in flight, and one restarted never
@@ -99,7 +103,21 @@ CREATE TABLE IF NOT EXISTS quarantine (
     reason TEXT NOT NULL,
     PRIMARY KEY (design_id, level)
 );
+CREATE TABLE IF NOT EXISTS verdicts (
+    design_id INTEGER PRIMARY KEY,
+    decision TEXT NOT NULL,
+    target REAL NOT NULL,
+    trials INTEGER NOT NULL,
+    heavy_leading INTEGER NOT NULL,
+    heavy_trailing INTEGER NOT NULL,
+    both_entries INTEGER NOT NULL,
+    exit_heavy_leading_s REAL,
+    exit_heavy_trailing_s REAL,
+    seed INTEGER NOT NULL,
+    verdict TEXT NOT NULL
+);
 """
+DECISIONS = ("works", "fails", "undecided")
 
 
 class ResultsMismatch(ValueError):
@@ -129,6 +147,18 @@ def _expected_columns() -> dict[str, list[str]]:
         return _columns(db)
     finally:
         db.close()
+
+
+def _ours(columns: dict[str, list[str]]) -> bool:
+    """Whether tables with ``columns`` are ours: each as ``_SCHEMA`` makes it, and only tables
+    a newer version added may be missing (``connect`` creates them: a sweep of the version
+    before the ``verdicts`` table resumes)."""
+    expected = _expected_columns()
+    added_later = {"verdicts"}
+    return (
+        all(expected.get(t) == c for t, c in columns.items())
+        and set(expected) - set(columns) <= added_later
+    )
 
 
 def _columns(db: sqlite3.Connection) -> dict[str, list[str]]:
@@ -167,7 +197,7 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     JSON, designs that are not the config's Halton points, a status, level, flag, planner or
     orientation outside their sets, a time or count that is negative, not finite or of the
     wrong type. A changed digit within a plausible number remains undetectable."""
-    from experiments.names import LEVEL_NAMES
+    from experiments.names import RUNG_NAMES
     from feeders.halton import halton_points
 
     db.text_factory = bytes  # decode here, to name the column
@@ -192,7 +222,7 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     ):
         return "designs: a row holds a value this program never writes"
     if config is None:
-        levels = LEVEL_NAMES
+        levels = RUNG_NAMES
     elif stored:
         expected = halton_points(count, seed)
         ids = [row[0] for row in stored]
@@ -223,16 +253,27 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
             OR orientation NOT IN ({names["orientations"]}) OR typeof(log) != 'text'""",
         "quarantine": f"""level NOT IN ({names["levels"]}) OR typeof(attempts) != 'integer'
             OR typeof(reason) != 'text'""",
+        "verdicts": f"""decision NOT IN ({", ".join(f"'{d}'" for d in DECISIONS)})
+            OR typeof(trials) != 'integer' OR trials < 1 OR typeof(target) != 'real'
+            OR NOT target BETWEEN 0 AND 1 OR typeof(verdict) != 'text'
+            OR heavy_leading NOT BETWEEN 0 AND trials OR heavy_trailing NOT BETWEEN 0 AND trials
+            OR both_entries NOT BETWEEN 0 AND min(heavy_leading, heavy_trailing)""",
     }
+    present = set(_columns(db))
     for table, condition in checks.items():
+        if table not in present:
+            continue
         if db.execute(f"SELECT 1 FROM {table} WHERE {condition} LIMIT 1").fetchone():
             return f"{table}: a row holds a value this program never writes"
     texts = {  # every text column but the logs (most of the file; only export_ompl reads them)
         "evaluations": "level, status, reason, worker",
         "runs": "level, orientation, planner",
         "quarantine": "level, reason",
+        "verdicts": "decision, verdict",
     }
     for table, columns in texts.items():
+        if table not in present:
+            continue
         try:
             for _ in db.execute(f"SELECT {columns} FROM {table}"):
                 pass
@@ -273,7 +314,7 @@ def check_database(path: str | Path) -> bool:
             rows = [r[0] for r in db.execute(f"PRAGMA {check}(1)")]
             if rows == ["ok"]:
                 columns = _columns(db)
-                if columns == _expected_columns():
+                if _ours(columns):
                     content = _content_problem(db)
                     if content:
                         rows = [content]
@@ -283,7 +324,7 @@ def check_database(path: str | Path) -> bool:
         raise _damaged(path, f"cannot be read ({exc})") from None
     if rows != ["ok"]:
         raise _damaged(path, f"is damaged (SQLite's {check}: {rows[0] if rows else 'no answer'})")
-    if columns and columns != _expected_columns():
+    if columns and not _ours(columns):
         raise _damaged(path, "has tables that are not a partfeeder results database's")
     return bool(columns)
 
@@ -379,7 +420,40 @@ def record(db: sqlite3.Connection, result: dict[str, Any], rung: int, attempts: 
             "INSERT INTO ompl_logs VALUES (?, ?, ?, ?)",
             [(*key, orientation, log) for orientation, log in result["logs"].items()],
         )
+        if "verdict" in result:
+            _record_verdict(db, key[0], result["verdict"], int(result["verdict_seed"]))
     return True
+
+
+def _record_verdict(db: sqlite3.Connection, design_id: int, verdict: dict, seed: int) -> None:
+    per = verdict["orientations"]
+    db.execute(
+        "INSERT INTO verdicts VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+        (
+            design_id,
+            verdict["decision"],
+            float(verdict["target"]),
+            int(verdict["drops"]),
+            int(per["heavy_leading"]["successes"]),
+            int(per["heavy_trailing"]["successes"]),
+            int(verdict["both"]["successes"]),
+            per["heavy_leading"]["mean_exit_time_s"],
+            per["heavy_trailing"]["mean_exit_time_s"],
+            seed,
+            json.dumps(verdict),
+        ),
+    )
+
+
+def verdicts(db: sqlite3.Connection) -> dict[int, dict[str, Any]]:
+    """design_id -> its stored passive verdict (``Verdict.to_dict()``, with ``seed``); none
+    in a database made before the ``verdicts`` table (opened read-only, it lacks it)."""
+    if "verdicts" not in _columns(db):
+        return {}
+    return {
+        int(r["design_id"]): {**json.loads(r["verdict"]), "seed": int(r["seed"])}
+        for r in db.execute("SELECT design_id, seed, verdict FROM verdicts")
+    }
 
 
 def quarantine(

@@ -4,17 +4,26 @@
   one below), evaluation time and designs per second of worker time.
 - Per level and planner: runs, solved fraction, median time and tree size (Planner Arena's
   main columns).
+- The truth: the passive verdict when the ladder has a ``passive`` rung (a feeder is passive;
+  the planning levels say whether any input could steer the part, necessary, not
+  sufficient), else the top level.
 - Pruning: on the holdout (a random sample of the designs that climbed every rung), each
-  lower level's verdict against the top level's: precision = P(top feasible | passes the
-  level), recall = P(passes the level | top feasible), with Wilson 95% intervals. Recall is
-  what pruning risks: a design pruned although the top level would pass it. ``ladder``
-  gives the same for the ladder's own decision up to a level (passing it and all below).
+  other level's verdict against the truth: precision = P(truth passes | passes the level),
+  recall = P(passes the level | truth passes), with Wilson 95% intervals. Recall is what
+  pruning risks: a design pruned although it works. ``ladder_pruning`` gives the same for the
+  ladder's own decision up to a level below the truth (passing it and all below).
 - Speed-up: the worker time the ladder spent (evaluations of designs that had passed every
-  lower rung) against the estimated time of evaluating every design at the top level only
-  (the mean top-level evaluation time on the holdout times the number of designs), with a
-  seeded bootstrap 95% interval over the holdout.
-- Best designs: feasible at the top level, ranked by the slower entry's fastest exit time
-  (Eq. 10: both orientations must leave, as fast as possible).
+  lower rung) against the estimated time of evaluating every design at the truth level only
+  (its mean evaluation time on the holdout times the number of designs), with a seeded
+  bootstrap 95% interval over the holdout.
+- Pipelines (with a passive rung): every order of rungs that ends with the passive verdict,
+  replayed on the holdout: cost per design, recall of the designs that work, speed-up over
+  the passive rung alone; what decides which rungs a ladder should have.
+- Passive: verdicts (works / fails / undecided), the fraction of designs that work with its
+  interval, drops, trials per verdict and drops per second of worker time.
+- Best designs: with a passive rung, the designs that work ranked by the lower bound of
+  P(both), then by the slower entry's mean exit time; else feasible at the top level, ranked
+  by the slower entry's fastest planned exit time (Eq. 10).
 """
 
 from __future__ import annotations
@@ -28,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from experiments.names import PASSIVE
 from experiments.proportions import wilson_interval
 from experiments.sweep import results_db
 from feeders.design import PARAMETER_NAMES
@@ -131,39 +141,34 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
     planners.sort(key=lambda p: (order.get(p["level"], 99), p["planner"]))
 
     holdout = [d for d, (h, _) in designs.items() if h]
+    truth_level = PASSIVE if PASSIVE in ladder else (ladder[-1] if ladder else None)
     pruning, ladder_pruning = [], []
     speedup = None
-    if ladder:
-        top = ladder[-1]
-        judged = [d for d in holdout if (d, top) in status]
-        truth = {d: status[(d, top)] == "feasible" for d in judged}
-        for rung, level in enumerate(ladder[:-1]):
+    pipelines: list[dict[str, Any]] = []
+    if truth_level is not None:
+        judged = [d for d in holdout if (d, truth_level) in status]
+        truth = {d: status[(d, truth_level)] == "feasible" for d in judged}
+        for rung, level in enumerate(ladder):
+            if level == truth_level:
+                continue
             own = [
                 (status[(d, level)] == "feasible", truth[d]) for d in judged if (d, level) in status
             ]
-            cumulative = [(passes_up_to(d, rung), truth[d]) for d in judged]
             pruning.append({"level": level, **_confusion(own)})
-            ladder_pruning.append({"level": level, **_confusion(cumulative)})
-        speedup = _speedup(ladder, designs, wall, passes_up_to, judged)
+            if rung < ladder.index(truth_level):
+                cumulative = [(passes_up_to(d, rung), truth[d]) for d in judged]
+                ladder_pruning.append({"level": level, **_confusion(cumulative)})
+        speedup = _speedup(ladder, truth_level, designs, wall, passes_up_to, judged)
+        if truth_level == PASSIVE:
+            pipelines = _pipelines(ladder, holdout, status, wall)
 
-    best = []
-    if ladder:
-        top = ladder[-1]
-        for d in sorted(d for d in designs if status.get((d, top)) == "feasible"):
-            exits = db.execute(
-                "SELECT orientation, MIN(exit_time_s) AS t FROM runs WHERE design_id = ? "
-                "AND level = ? AND solved = 1 GROUP BY orientation",
-                (d, top),
-            ).fetchall()
-            if len(exits) == 2:
-                best.append(
-                    {
-                        "design_id": d,
-                        "values": designs[d][1],
-                        "exit_time_s": max(e["t"] for e in exits),
-                    }
-                )
-        best.sort(key=lambda b: (b["exit_time_s"], b["design_id"]))
+    stored_verdicts = results_db.verdicts(db)
+    passive = _passive_summary(ladder, holdout, status, wall, stored_verdicts)
+    best = (
+        _best_by_verdict(designs, stored_verdicts)
+        if PASSIVE in ladder
+        else _best_by_planning(db, ladder, designs, status)
+    )
     return {
         "name": config.get("name", "sweep"),
         "results_key": meta.get("results_key"),
@@ -173,23 +178,148 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
         "feeder": config.get("feeder", {}),
         "levels": levels,
         "planners": planners,
+        "truth": truth_level,
         "pruning": pruning,
         "ladder_pruning": ladder_pruning,
         "speedup": speedup,
+        "passive": passive,
+        "pipelines": pipelines,
         "best": best[:BEST_DESIGNS],
         "quarantined": quarantined,
     }
 
 
-def _speedup(ladder, designs, wall, passes_up_to, judged) -> dict[str, Any] | None:
-    """The ladder's worker time against every design at the top level (see module)."""
+def _best_by_planning(db, ladder, designs, status) -> list[dict[str, Any]]:
+    """Without a passive rung: feasible at the top level, ranked by the slower entry's
+    fastest planned exit time (Eq. 10)."""
+    best: list[dict[str, Any]] = []
+    if not ladder:
+        return best
     top = ladder[-1]
+    for d in sorted(d for d in designs if status.get((d, top)) == "feasible"):
+        exits = db.execute(
+            "SELECT orientation, MIN(exit_time_s) AS t FROM runs WHERE design_id = ? "
+            "AND level = ? AND solved = 1 GROUP BY orientation",
+            (d, top),
+        ).fetchall()
+        if len(exits) == 2:
+            best.append(
+                {"design_id": d, "values": designs[d][1], "exit_time_s": max(e["t"] for e in exits)}
+            )
+    best.sort(key=lambda b: (b["exit_time_s"], b["design_id"]))
+    return best
+
+
+def _best_by_verdict(designs, stored: dict[int, dict[str, Any]]) -> list[dict[str, Any]]:
+    """With a passive rung: the designs that work, ranked by the lower bound of P(both)
+    (the probability that one part goes through heavy end down from either entry), then by
+    the slower entry's mean exit time T (Eq. 10's second term), then by id."""
+    best = []
+    for d, verdict in stored.items():
+        if verdict["decision"] != "works" or d not in designs:
+            continue
+        means = [per["mean_exit_time_s"] for per in verdict["orientations"].values()]
+        exit_time = max(means) if all(m is not None for m in means) else None
+        best.append(
+            {"design_id": d, "values": designs[d][1], "exit_time_s": exit_time, "verdict": verdict}
+        )
+    best.sort(
+        key=lambda b: (
+            -b["verdict"]["both"]["interval"][0],
+            math.inf if b["exit_time_s"] is None else b["exit_time_s"],
+            b["design_id"],
+        )
+    )
+    return best
+
+
+def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | None:
+    """The passive rung's counts, the fraction of designs that work (over every design when
+    the rung is first, else over the holdout, whose designs reach it whatever the rungs below
+    say: an unbiased sample), and the verdicts' cost."""
+    if PASSIVE not in ladder:
+        return None
+    evaluated = [d for (d, level) in status if level == PASSIVE]
+    decisions = {d: stored[d]["decision"] for d in evaluated if d in stored}
+    first = ladder[0] == PASSIVE
+    basis = evaluated if first else [d for d in holdout if (d, PASSIVE) in status]
+    works = sum(1 for d in basis if status[(d, PASSIVE)] == "feasible")
+    fraction = _ratio(works, len(basis))
+    trials = [stored[d]["drops"] for d in decisions]
+    seconds = sum(wall[(d, PASSIVE)] for d in evaluated)
+    drops = 2 * sum(trials)
+    return {
+        "evaluated": len(evaluated),
+        **{k: sum(1 for v in decisions.values() if v == k) for k in results_db.DECISIONS},
+        "degenerate": sum(1 for d in evaluated if status[(d, PASSIVE)] == "degenerate"),
+        "works_fraction": fraction["value"],
+        "works_ci": fraction["ci"],
+        "works_basis": "every design" if first else "the holdout",
+        "works_n": len(basis),
+        "drops": drops,
+        "mean_trials": sum(trials) / len(trials) if trials else None,
+        "drops_per_s": drops / seconds if seconds > 0 else None,
+        "target": next(iter(stored.values()))["target"] if stored else None,
+    }
+
+
+def _pipelines(ladder, holdout, status, wall) -> list[dict[str, Any]]:
+    """What each pipeline would cost and keep: every ordered subset of the ladder's planning
+    rungs followed by the passive rung, replayed on the holdout designs evaluated at every
+    rung (their stored times and verdicts). A design pays for each rung it reaches and goes
+    on while it is feasible; cost is the mean worker seconds per design (seeded bootstrap 95%
+    interval), recall the fraction of the designs that work that reach the passive rung
+    (Wilson 95%), the speed-up is over the passive rung alone."""
+    planning = [level for level in ladder if level != PASSIVE]
+    full = [d for d in holdout if all((d, level) in wall for level in ladder)]
+    if not full:
+        return []
+    works = {d: status[(d, PASSIVE)] == "feasible" for d in full}
+    rng = np.random.default_rng(0)
+    resample = rng.integers(0, len(full), (BOOTSTRAP_SAMPLES, len(full)))
+    out = []
+    alone = None
+    for mask in range(2 ** len(planning)):
+        rungs = [level for k, level in enumerate(planning) if mask >> k & 1] + [PASSIVE]
+        costs, reached = [], []
+        for d in full:
+            cost, alive = 0.0, True
+            for level in rungs:
+                if not alive:
+                    break
+                cost += wall[(d, level)]
+                alive = status[(d, level)] == "feasible" if level != PASSIVE else alive
+            costs.append(cost)
+            reached.append(all(status[(d, level)] == "feasible" for level in rungs[:-1]))
+        samples = np.array(costs)
+        means = samples[resample].mean(1)
+        kept = sum(1 for d, r in zip(full, reached, strict=True) if r and works[d])
+        recall = _ratio(kept, sum(works.values()))
+        mean = float(samples.mean())
+        if mask == 0:
+            alone = mean
+        out.append(
+            {
+                "rungs": rungs,
+                "cost_s": mean,
+                "cost_ci": [float(np.quantile(means, 0.025)), float(np.quantile(means, 0.975))],
+                "recall": recall["value"],
+                "recall_ci": recall["ci"],
+                "speedup": alone / mean if alone and mean > 0 else None,
+                "n": len(full),
+            }
+        )
+    return out
+
+
+def _speedup(ladder, truth_level, designs, wall, passes_up_to, judged) -> dict[str, Any] | None:
+    """The ladder's worker time against every design at the truth level only (see module)."""
     needed = 0.0
     for (d, level), t in wall.items():
         rung = ladder.index(level)
         if rung == 0 or passes_up_to(d, rung - 1):
             needed += t
-    samples = np.array([wall[(d, top)] for d in judged])
+    samples = np.array([wall[(d, truth_level)] for d in judged])
     if len(samples) == 0 or needed <= 0.0:
         return None
     n = len(designs)
@@ -204,7 +334,7 @@ def _speedup(ladder, designs, wall, passes_up_to, judged) -> dict[str, Any] | No
         "speedup": estimate / needed,
         "speedup_ci": [low / needed, high / needed],
         "holdout_n": len(samples),
-        "top_level": top,
+        "top_level": truth_level,
     }
 
 
@@ -238,8 +368,30 @@ def summary_table(summary: dict[str, Any]) -> str:
             f"[{s['speedup_ci'][0]:.2f}, {s['speedup_ci'][1]:.2f}] "
             f"({s['ladder_cost_s']:.0f} s of worker time vs ~{s['dynamic_cost_s']:.0f} s)"
         )
+    p = summary.get("passive")
+    if p and p["works_n"]:
+        lo, hi = p["works_ci"]
+        lines.append(
+            f"passive verdict: {p['works']} of {p['evaluated']} designs work "
+            f"({_pct(p['works_fraction'])} [{_pct(lo)}, {_pct(hi)}] of {p['works_basis']}); "
+            f"{p['undecided']} undecided; {p['mean_trials']:.1f} trials per verdict, "
+            f"{p['drops_per_s']:.0f} drops/s"
+        )
+    for pipe in summary.get("pipelines") or []:
+        lines.append(
+            f"pipeline {' -> '.join(pipe['rungs'])}: {pipe['cost_s']:.2f} s/design, "
+            f"recall {_pct(pipe['recall'])}, speed-up {pipe['speedup']:.2f}x (n={pipe['n']})"
+        )
     for b in summary["best"][:3]:
-        lines.append(f"best: design {b['design_id']}, exit time {b['exit_time_s']:.2f} s")
+        exit_time = "-" if b["exit_time_s"] is None else f"{b['exit_time_s']:.2f} s"
+        if "verdict" in b:
+            lo, hi = b["verdict"]["both"]["interval"]
+            lines.append(
+                f"best: design {b['design_id']}, P(both) {b['verdict']['both']['p']:.2f} "
+                f"[{lo:.2f}, {hi:.2f}], mean exit time {exit_time}"
+            )
+        else:
+            lines.append(f"best: design {b['design_id']}, exit time {exit_time}")
     for q in summary["quarantined"]:
         lines.append(f"quarantined: design {q['design_id']} at {q['level']}: {q['reason']}")
     return "\n".join(lines)

@@ -119,15 +119,16 @@ def test_calibrated_part_through_table3_works_and_the_matrix_adds_up():
 
 def test_the_old_default_part_jams_in_table3():
     """The issue's measurement: the 1.6 x 1 peg, heavy half 0.75, mu 0.3 jams in table3 from
-    both entries (0 of 100): the verdict fails at the first look, and the classes say where
-    (both are stops, not exits)."""
+    both entries (0 of 100): the verdict fails at the first look (min_drops trials), and the
+    classes say where (both are stops, not exits)."""
     verdict = design_verdict(
         PRESETS["table3"], Peg.two_density(1.6, 1.0, heavy_fraction=0.75), 0.3, seed=0
     )
-    assert verdict.decision == "fails" and verdict.drops == 20 and verdict.both == 0
+    first_look = VerdictSettings().min_drops
+    assert verdict.decision == "fails" and verdict.drops == first_look and verdict.both == 0
     stops = set(OUTCOMES[2:8])
     for row in verdict.transitions().values():
-        assert sum(n for c, n in row.items() if c in stops) == 20
+        assert sum(n for c, n in row.items() if c in stops) == first_look
 
 
 def _small_verdict(seed: int) -> dict:

@@ -51,7 +51,7 @@ def test_a_bad_field_is_named_with_its_allowed_range(path: str, value, message: 
 def test_the_ladder_climbs_in_order_and_names_each_level_once() -> None:
     data = copy.deepcopy(TINY)
     data["ladder"] = [data["ladder"][1], data["ladder"][0]]
-    with pytest.raises(ConfigError, match="must climb in order"):
+    with pytest.raises(ConfigError, match="must climb the planning levels in order"):
         config_from_dict(data)
     data["ladder"] = [TINY["ladder"][0], TINY["ladder"][0]]
     with pytest.raises(ConfigError, match="has a level twice"):
