@@ -108,7 +108,7 @@ def _verdict(scene: Scene, args: argparse.Namespace) -> int:
         raise UsageError(f"--seed = {args.seed} must be >= 0")
     settings = VerdictSettings(
         target=args.target,
-        min_drops=min(20, args.samples),
+        min_drops=min(VerdictSettings.min_drops, args.samples),
         max_drops=args.samples,
         step=args.step,
         t_max=args.time,

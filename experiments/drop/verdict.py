@@ -210,6 +210,15 @@ def run_trial(
     return Trial(index, tuple(success), tuple(outcome), tuple(times))
 
 
+def looks(settings: VerdictSettings) -> list[int]:
+    """The trial counts at which the verdict looks: ``min_drops``, then every ``batch`` more,
+    and ``max_drops`` last."""
+    out = [min(settings.min_drops, settings.max_drops)]
+    while out[-1] < settings.max_drops:
+        out.append(min(out[-1] + settings.batch, settings.max_drops))
+    return out
+
+
 def decide(successes: Sequence[int], drops: int, target: float) -> str:
     """ "works" when every orientation's Wilson lower bound clears ``target``, "fails" when
     some upper bound is below it, else "undecided"."""
@@ -231,9 +240,8 @@ def verdict_of(
     t0 = time.perf_counter()
     trials: list[Trial] = []
     decision = "undecided"
-    while len(trials) < settings.max_drops:
-        look = settings.min_drops if not trials else len(trials) + settings.batch
-        for index in range(len(trials), min(look, settings.max_drops)):
+    for look in looks(settings):
+        for index in range(len(trials), look):
             trials.append(run_trial(make_scene, orientations, settings, seed, index))
         counts = [sum(t.success[k] for t in trials) for k in range(len(orientations))]
         decision = decide(counts, len(trials), settings.target)
