@@ -332,21 +332,35 @@ def solve_lcp(M: np.ndarray, q: np.ndarray, z: np.ndarray) -> tuple[int, int, fl
 
 
 @njit(cache=True)
-def solve_from_basis(M: np.ndarray, q: np.ndarray, basic: np.ndarray, z: np.ndarray) -> float:
-    """Try a guessed complementary basis: z_i basic where ``basic[i]``, w_i basic elsewhere.
+def guess_basis(M: np.ndarray, q: np.ndarray, z: np.ndarray, basic: np.ndarray) -> None:
+    """The basis to guess next step from this step's solution z of LCP(M, q): every z_i > 0,
+    and every degenerate pair (z_i = 0 and w_i = (Mz + q)_i = 0 to the solver's tolerance),
+    which a pivoting solver may have held basic at zero. :func:`solve_from_basis` drops what
+    is dependent, so a guess too large costs nothing but a few eliminations."""
+    n = M.shape[0]
+    scale = 1.0
+    for i in range(n):
+        scale = max(scale, 1.0 + abs(q[i]))
+    for i in range(n):
+        if z[i] > 0.0:
+            basic[i] = True
+            continue
+        w = q[i]
+        for k in range(n):
+            w += M[i, k] * z[k]
+        basic[i] = abs(w) <= TOL * scale
 
-    Solves ``M_SS z_S = -q_S`` (Gaussian elimination, partial pivoting) and accepts the result
-    only if it is a solution of LCP(M, q) to the same tolerance as :func:`solve_lcp`
-    (residual <= ``TOL * (1 + max|q|)``). A time stepper passes the basis of its previous step:
-    in sustained contact (resting, sliding, rolling) the contact mode rarely changes, and a
-    verified guess replaces Lemke's pivots by one small solve. Returns the residual when
-    accepted (and writes z), inf otherwise (z untouched).
-    """
+
+@njit(cache=True)
+def _solve_guess(M: np.ndarray, q: np.ndarray, guess: np.ndarray, trial: np.ndarray) -> int:
+    """Solve ``M_SS z_S = -q_S`` for S = {i: guess[i]} into ``trial`` (zero off S), Gaussian
+    elimination with partial pivoting. Returns -1 when solved, else the index i in S of the
+    first column without a pivot (M_SS singular)."""
     n = M.shape[0]
     idx = np.empty(n, dtype=np.int64)
     m = 0
     for i in range(n):
-        if basic[i]:
+        if guess[i]:
             idx[m] = i
             m += 1
     a = np.empty((m, m + 1))
@@ -360,7 +374,7 @@ def solve_from_basis(M: np.ndarray, q: np.ndarray, basic: np.ndarray, z: np.ndar
             if abs(a[r, c]) > abs(a[p, c]):
                 p = r
         if not abs(a[p, c]) > 1e-13:
-            return np.inf
+            return idx[c]
         if p != c:
             for k in range(c, m + 1):
                 a[c, k], a[p, k] = a[p, k], a[c, k]
@@ -369,12 +383,45 @@ def solve_from_basis(M: np.ndarray, q: np.ndarray, basic: np.ndarray, z: np.ndar
             if f != 0.0:
                 for k in range(c, m + 1):
                     a[r, k] -= f * a[c, k]
-    trial = np.zeros(n)
+    for i in range(n):
+        trial[i] = 0.0
     for r in range(m - 1, -1, -1):
         s = a[r, m]
         for k in range(r + 1, m):
             s -= a[r, k] * trial[idx[k]]
         trial[idx[r]] = s / a[r, r]
+    return -1
+
+
+@njit(cache=True)
+def solve_from_basis(M: np.ndarray, q: np.ndarray, basic: np.ndarray, z: np.ndarray) -> float:
+    """Try a guessed complementary basis: z_i basic where ``basic[i]``, w_i basic elsewhere.
+
+    Solves ``M_SS z_S = -q_S`` (Gaussian elimination, partial pivoting) and accepts the result
+    only if it is a solution of LCP(M, q) to the same tolerance as :func:`solve_lcp`
+    (residual <= ``TOL * (1 + max|q|)``). A time stepper passes the basis of its previous step:
+    in sustained contact (resting, sliding, rolling) the contact mode rarely changes, and a
+    verified guess replaces Lemke's pivots by one small solve.
+
+    When ``M_SS`` is singular, the variable whose column has no pivot leaves the guess (z_i = 0)
+    and the smaller system is solved. This is the sticking case: two contacts that stick share
+    the friction in a way the LCP leaves open, Lemke's basis held one of its variables at zero,
+    and the guess, read from z > 0, left that one out but kept both frictions. Whatever the
+    guess, only a verified solution is accepted. Returns the residual when accepted (and
+    writes z), inf otherwise (z untouched).
+    """
+    n = M.shape[0]
+    guess = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        guess[i] = basic[i]
+    trial = np.empty(n)
+    for _ in range(n + 1):
+        singular = _solve_guess(M, q, guess, trial)
+        if singular < 0:
+            break
+        guess[singular] = False
+    else:
+        return np.inf
     scale = 1.0
     for i in range(n):
         scale = max(scale, 1.0 + abs(q[i]))

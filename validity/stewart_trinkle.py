@@ -54,7 +54,7 @@ from validity.contact_lcp import (
     solve_with_fallback,
 )
 from validity.geometry_kernel import pose_vertices
-from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_from_basis, solve_lcp
+from validity.lcp import LCP_REGULARISED, LCP_SOLVED, guess_basis, solve_from_basis, solve_lcp
 
 # Per-step telemetry columns.
 T_CONTACTS, T_STATUS, T_PIVOTS, T_ALPHA, T_RESIDUAL, T_PENETRATION, T_SIZE = range(7)
@@ -310,8 +310,7 @@ def simulate_kernel(
                     basic_size = -1
                 else:
                     basic_size = size
-                    for i in range(size):
-                        basic[i] = z[i] > 0.0
+                    guess_basis(B[:size, :size], b[:size], z[:size], basic[:size])
                     if status == FALLBACK_FRICTIONLESS:
                         summary[S_FALLBACKS] += 1
                     elif status == LCP_REGULARISED:

@@ -330,17 +330,18 @@ def test_the_halton_design_that_blew_up_through_a_partly_covered_edge_is_calm() 
 
 @pytest.mark.parametrize("mu", [0.0, 0.3, 0.7])
 def test_warm_start_finds_the_same_motion_where_the_motion_is_unique(mu: float) -> None:
-    """On the incline (a unique solution: one face, no wedging) the previous step's basis,
-    verified, reproduces Lemke's trajectory. Sliding, most steps use it; sticking, the basis
-    of two redundant contacts is singular, so Lemke (which handles it) solves every step."""
+    """On the incline (a unique motion: one face, no wedging) the previous step's basis,
+    verified, reproduces Lemke's trajectory, and most steps use it: sliding, and sticking
+    too (mu = 0.7), where the two corners share the friction in a way the LCP leaves open (the
+    basis read from z > 0 was singular, and was verified in 3 of 1,000 steps before the guess
+    kept the degenerate pairs and dropped dependent columns). Reference: Lemke every step."""
     scene = _with_friction(_incline(), mu)
     start = DynamicLevel(scene).state_of_pose(scene.start("resting"))
     warm, cold = (
         DynamicLevel(scene, warm_start=w).simulate(start, duration=1.0) for w in (True, False)
     )
     np.testing.assert_allclose(warm.states, cold.states, atol=1e-9)
-    if mu < 0.5:
-        assert warm.summary["warm_starts"] > 0.9 * warm.summary["lcp_solves"]
+    assert warm.summary["warm_starts"] > 0.9 * warm.summary["lcp_solves"]
     assert cold.summary["warm_starts"] == 0
 
 
