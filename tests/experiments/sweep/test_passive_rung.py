@@ -253,3 +253,25 @@ def test_a_verdict_row_this_program_cannot_write_is_refused(tmp_path: Path) -> N
     db.close()
     with pytest.raises(results_db.ResultsDamaged, match="verdicts"):
         results_db.connect(path)
+
+
+def test_the_passive_verdicts_are_the_same_on_the_dask_executor(tmp_path: Path) -> None:
+    """Reference: the same sweep on the local executor (worker processes)."""
+    distributed = pytest.importorskip("distributed")
+    config = config_from_dict(PASSIVE_ONLY)
+    local = run_sweep(config, tmp_path / "local")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
+        remote = run_sweep(
+            config, tmp_path / "dask", executor="dask", scheduler=cluster.scheduler_address
+        )
+    stored = []
+    for path in (local, remote):
+        db = results_db.connect(path, readonly=True)
+        try:
+            verdicts = results_db.verdicts(db)
+        finally:
+            db.close()
+        stored.append({d: {**v, "wall_time_s": None} for d, v in verdicts.items()})
+    assert stored[0] == stored[1] and len(stored[0]) == 3
