@@ -223,14 +223,19 @@ def test_pipelines_replay_the_holdout_by_hand(tmp_path: Path) -> None:
     assert summary["passive"]["works_fraction"] == 0.5
 
 
-def test_a_results_database_made_before_the_verdicts_table_is_resumed(tmp_path: Path) -> None:
+def _claimed(path: Path, statement: str, *values) -> Path:
+    """A results database of PASSIVE_ONLY at ``path``, then ``statement`` run in it."""
     config = config_from_dict(PASSIVE_ONLY)
-    path = tmp_path / "results.sqlite"
     db = results_db.connect(path)
     results_db.claim(db, config.to_dict(), config.results_key())
     with db:
-        db.execute("DROP TABLE verdicts")
+        db.execute(statement, values)
     db.close()
+    return path
+
+
+def test_a_results_database_made_before_the_verdicts_table_is_resumed(tmp_path: Path) -> None:
+    path = _claimed(tmp_path / "results.sqlite", "DROP TABLE verdicts")
     assert results_db.verdicts(results_db.connect(path, readonly=True)) == {}
     db = results_db.connect(path)  # the missing table is made
     try:
@@ -241,16 +246,11 @@ def test_a_results_database_made_before_the_verdicts_table_is_resumed(tmp_path: 
 
 
 def test_a_verdict_row_this_program_cannot_write_is_refused(tmp_path: Path) -> None:
-    config = config_from_dict(PASSIVE_ONLY)
-    path = tmp_path / "results.sqlite"
-    db = results_db.connect(path)
-    results_db.claim(db, config.to_dict(), config.results_key())
-    with db:
-        db.execute(
-            "INSERT INTO verdicts VALUES (0, 'maybe', 0.9, 10, 1, 1, 1, NULL, NULL, 1, ?)",
-            (json.dumps({}),),
-        )
-    db.close()
+    path = _claimed(
+        tmp_path / "results.sqlite",
+        "INSERT INTO verdicts VALUES (0, 'maybe', 0.9, 10, 1, 1, 1, NULL, NULL, 1, ?)",
+        json.dumps({}),
+    )
     with pytest.raises(results_db.ResultsDamaged, match="verdicts"):
         results_db.connect(path)
 
