@@ -332,34 +332,37 @@ def solve_lcp(M: np.ndarray, q: np.ndarray, z: np.ndarray) -> tuple[int, int, fl
 
 
 @njit(cache=True)
-def guess_basis(M: np.ndarray, q: np.ndarray, z: np.ndarray, basic: np.ndarray) -> None:
-    """The basis to guess next step from this step's solution z of LCP(M, q): every z_i > 0,
-    and every degenerate pair (z_i = 0 and w_i = (Mz + q)_i = 0 to the solver's tolerance),
-    which a pivoting solver may have held basic at zero. :func:`solve_from_basis` drops what
-    is dependent, so a guess too large costs nothing but a few eliminations."""
+def guess_basis(
+    M: np.ndarray, q: np.ndarray, z: np.ndarray, basic: np.ndarray, degenerate: np.ndarray
+) -> None:
+    """The basis to guess next step from this step's solution z of LCP(M, q): ``basic``, every
+    z_i > 0; ``degenerate``, every pair with z_i = 0 and w_i = (Mz + q)_i = 0 to the solver's
+    tolerance, which a pivoting solver may have held basic at zero."""
     n = M.shape[0]
     scale = 1.0
     for i in range(n):
         scale = max(scale, 1.0 + abs(q[i]))
     for i in range(n):
-        if z[i] > 0.0:
-            basic[i] = True
-            continue
-        w = q[i]
-        for k in range(n):
-            w += M[i, k] * z[k]
-        basic[i] = abs(w) <= TOL * scale
+        basic[i] = z[i] > 0.0
+        degenerate[i] = False
+        if not basic[i]:
+            w = q[i]
+            for k in range(n):
+                w += M[i, k] * z[k]
+            degenerate[i] = abs(w) <= TOL * scale
 
 
 @njit(cache=True)
-def _solve_guess(M: np.ndarray, q: np.ndarray, guess: np.ndarray, trial: np.ndarray) -> int:
+def _solve_guess(M: np.ndarray, q: np.ndarray, guess: np.ndarray, trial: np.ndarray) -> bool:
     """Solve ``M_SS z_S = -q_S`` for S = {i: guess[i]} into ``trial`` (zero off S), Gaussian
-    elimination with partial pivoting. Returns -1 when solved, else the index i in S of the
-    first column without a pivot (M_SS singular)."""
+    elimination with partial pivoting in one pass. A column without a pivot (M_SS singular)
+    leaves S (``guess[i]`` is cleared): its z_i is 0 and the rows left over are not solved for
+    (the caller verifies the result). Returns whether a column left."""
     n = M.shape[0]
     idx = np.empty(n, dtype=np.int64)
     m = 0
     for i in range(n):
+        trial[i] = 0.0
         if guess[i]:
             idx[m] = i
             m += 1
@@ -368,66 +371,71 @@ def _solve_guess(M: np.ndarray, q: np.ndarray, guess: np.ndarray, trial: np.ndar
         for c in range(m):
             a[r, c] = M[idx[r], idx[c]]
         a[r, m] = -q[idx[r]]
+    pivot_col = np.empty(m, dtype=np.int64)
+    rows = 0
     for c in range(m):
-        p = c
-        for r in range(c + 1, m):
+        p = rows
+        for r in range(rows + 1, m):
             if abs(a[r, c]) > abs(a[p, c]):
                 p = r
-        if not abs(a[p, c]) > 1e-13:
-            return idx[c]
-        if p != c:
+        if rows >= m or not abs(a[p, c]) > 1e-13:
+            guess[idx[c]] = False  # no pivot: z of this column stays 0
+            continue
+        if p != rows:
             for k in range(c, m + 1):
-                a[c, k], a[p, k] = a[p, k], a[c, k]
-        for r in range(c + 1, m):
-            f = a[r, c] / a[c, c]
+                a[rows, k], a[p, k] = a[p, k], a[rows, k]
+        for r in range(rows + 1, m):
+            f = a[r, c] / a[rows, c]
             if f != 0.0:
                 for k in range(c, m + 1):
-                    a[r, k] -= f * a[c, k]
-    for i in range(n):
-        trial[i] = 0.0
-    for r in range(m - 1, -1, -1):
+                    a[r, k] -= f * a[rows, k]
+        pivot_col[rows] = c
+        rows += 1
+    for r in range(rows - 1, -1, -1):
+        c = pivot_col[r]
         s = a[r, m]
-        for k in range(r + 1, m):
+        for k in range(c + 1, m):
             s -= a[r, k] * trial[idx[k]]
-        trial[idx[r]] = s / a[r, r]
-    return -1
+        trial[idx[c]] = s / a[r, c]
+    return rows < m
 
 
 @njit(cache=True)
-def solve_from_basis(M: np.ndarray, q: np.ndarray, basic: np.ndarray, z: np.ndarray) -> float:
+def solve_from_basis(
+    M: np.ndarray, q: np.ndarray, basic: np.ndarray, degenerate: np.ndarray, z: np.ndarray
+) -> float:
     """Try a guessed complementary basis: z_i basic where ``basic[i]``, w_i basic elsewhere.
 
     Solves ``M_SS z_S = -q_S`` (Gaussian elimination, partial pivoting) and accepts the result
     only if it is a solution of LCP(M, q) to the same tolerance as :func:`solve_lcp`
-    (residual <= ``TOL * (1 + max|q|)``). A time stepper passes the basis of its previous step:
-    in sustained contact (resting, sliding, rolling) the contact mode rarely changes, and a
-    verified guess replaces Lemke's pivots by one small solve.
+    (residual <= ``TOL * (1 + max|q|)``). A time stepper passes the basis of its previous step
+    (:func:`guess_basis`): in sustained contact (resting, sliding, rolling) the contact mode
+    rarely changes, and a verified guess replaces Lemke's pivots by one small solve.
 
-    When ``M_SS`` is singular, the variable whose column has no pivot leaves the guess (z_i = 0)
-    and the smaller system is solved. This is the sticking case: two contacts that stick share
-    the friction in a way the LCP leaves open, Lemke's basis held one of its variables at zero,
-    and the guess, read from z > 0, left that one out but kept both frictions. Whatever the
-    guess, only a verified solution is accepted. Returns the residual when accepted (and
-    writes z), inf otherwise (z untouched).
+    A variable whose column has no pivot (``M_SS`` singular) leaves the guess (z_i = 0); if
+    that does not verify, the guess is retried with the ``degenerate`` pairs added. This is
+    the sticking case: two contacts that stick share the friction in a way the LCP leaves
+    open, Lemke's basis held one of its variables at zero, and the guess read from z > 0 left
+    that one out but kept both frictions. Whatever the guess, only a verified solution is
+    accepted. Returns the residual when accepted (and writes z), inf otherwise (z untouched).
     """
     n = M.shape[0]
-    guess = np.empty(n, dtype=np.bool_)
-    for i in range(n):
-        guess[i] = basic[i]
     trial = np.empty(n)
-    for _ in range(n + 1):
-        singular = _solve_guess(M, q, guess, trial)
-        if singular < 0:
-            break
-        guess[singular] = False
-    else:
-        return np.inf
+    guess = np.empty(n, dtype=np.bool_)
     scale = 1.0
     for i in range(n):
         scale = max(scale, 1.0 + abs(q[i]))
+        guess[i] = basic[i]
+    singular = _solve_guess(M, q, guess, trial)
     res = lcp_residual(M, q, trial)
+    if not res <= TOL * scale and singular:
+        for i in range(n):
+            guess[i] = basic[i] or degenerate[i]
+        _solve_guess(M, q, guess, trial)
+        res = lcp_residual(M, q, trial)
     if not res <= TOL * scale:
         return np.inf
     for i in range(n):
         z[i] = max(trial[i], 0.0)
+        basic[i] = guess[i]
     return res

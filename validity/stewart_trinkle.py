@@ -240,6 +240,7 @@ def simulate_kernel(
     z = np.zeros(nmax)
     bias = np.empty(MAX_CONTACTS)
     basic = np.zeros(nmax, dtype=np.bool_)  # the last solved LCP's basis: z_i > 0
+    degen = np.zeros(nmax, dtype=np.bool_)  # and its degenerate pairs: z_i = w_i = 0
     basic_size = -1
     vstar = np.empty(3)
     v = np.empty(3)
@@ -296,7 +297,9 @@ def simulate_kernel(
                 summary[S_LCPS] += 1
                 warm = False
                 if warm_start and size == basic_size:
-                    residual = solve_from_basis(B[:size, :size], b[:size], basic[:size], z[:size])
+                    residual = solve_from_basis(
+                        B[:size, :size], b[:size], basic[:size], degen[:size], z[:size]
+                    )
                     warm = residual < np.inf
                 if warm:
                     status = WARM
@@ -310,7 +313,8 @@ def simulate_kernel(
                     basic_size = -1
                 else:
                     basic_size = size
-                    guess_basis(B[:size, :size], b[:size], z[:size], basic[:size])
+                    if not warm:  # a verified guess has already left its basis in basic
+                        guess_basis(B[:size, :size], b[:size], z[:size], basic[:size], degen[:size])
                     if status == FALLBACK_FRICTIONLESS:
                         summary[S_FALLBACKS] += 1
                     elif status == LCP_REGULARISED:

@@ -44,6 +44,7 @@ from validity.lcp import (
     TOL_REGULARISED,
     lcp_residual,
     lemke,
+    solve_from_basis,
     solve_lcp,
 )
 
@@ -549,3 +550,28 @@ def test_views_of_a_larger_buffer():
     assert solve_lcp(big[2 : n + 2, 1 : 2 * n + 1 : 2], qbig[::2], z_view)[0] == LCP_SOLVED
     solve_lcp(m, q, z_ref)
     np.testing.assert_array_equal(z_view, z_ref)
+
+
+def test_a_singular_guess_drops_the_dependent_variable_and_is_verified() -> None:
+    """M = [[1, 1], [1, 1]], q = (-1, -1): every z >= 0 with z1 + z2 = 1 solves the LCP (two
+    sticking contacts sharing one friction). The guess {z1, z2} is singular; the column
+    without a pivot leaves it, z = (1, 0) is verified (checked here with NumPy: z >= 0,
+    w = Mz + q >= 0, z.w = 0), and the basis that verified is left for the next step."""
+    M = np.array([[1.0, 1.0], [1.0, 1.0]])
+    q = np.array([-1.0, -1.0])
+    basic = np.array([True, True])
+    z = np.full(2, np.nan)
+    residual = solve_from_basis(M, q, basic, np.zeros(2, dtype=np.bool_), z)
+    w = M @ z + q
+    assert residual < 1e-12
+    assert np.all(z >= 0.0) and np.all(w >= -1e-12) and abs(z @ w) < 1e-12
+    assert basic.tolist() == [True, False]
+
+
+def test_a_guess_that_cannot_be_verified_leaves_z_and_the_basis_untouched() -> None:
+    """q = (1, 1) with M = I has the unique solution z = 0: the guess {z1} gives z1 = -1,
+    which is not a solution, so the answer is inf and nothing is written."""
+    basic = np.array([True, False])
+    z = np.full(2, 7.0)
+    assert solve_from_basis(np.eye(2), np.ones(2), basic, np.zeros(2, dtype=np.bool_), z) == np.inf
+    assert z.tolist() == [7.0, 7.0] and basic.tolist() == [True, False]
