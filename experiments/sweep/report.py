@@ -30,6 +30,7 @@ from experiments.sweep.report_figures import (
     survivors_figure,
 )
 from experiments.sweep.report_html import html_page
+from experiments.sweep.report_verdicts import STRIP_PREFIX, TRANSITIONS, verdict_figures
 from experiments.sweep.results_db import connect
 from feeders.design import PARAMETER_NAMES
 
@@ -41,9 +42,12 @@ def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Pat
 
     ``summary`` holds the sweep's statistics (keys ``name``, ``results_key``, ``designs``,
     ``holdout``, ``ladder``, ``feeder``, ``levels``, ``planners``, ``pruning``, ``speedup``,
-    ``best``, ``quarantined``); the database at ``db_path`` gives the per-design verdicts and
-    the per-run planner numbers the figures need. Figures of an earlier report that this one
-    does not draw (no best designs yet) are removed, so the page and the directory agree. The
+    ``best``, ``quarantined``, and with a passive rung ``truth``, ``passive``, ``pipelines``);
+    the best designs with a verdict get the strips of their nominal drops
+    (:mod:`experiments.sweep.report_verdicts`); the database at ``db_path`` gives the
+    per-design verdicts and the per-run planner numbers the figures need. Figures of an
+    earlier report that this one does not draw (no best designs yet) are removed, so the page
+    and the directory agree. The
     HTML is written to a temporary file and renamed, so a browser refreshing the page while a
     sweep reports never sees half of it.
     """
@@ -63,9 +67,13 @@ def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Pat
     best = list(summary.get("best") or [])
     if best:
         figures["best_designs"] = best_figure(summary, best, figures_dir / "best_designs.png")
+    figures.update(verdict_figures(summary, figures_dir))
     for name in FIGURES:
         stale = figures_dir / f"{name}.png"
         if name not in figures and stale.exists():
+            stale.unlink()
+    for stale in [*figures_dir.glob(f"{STRIP_PREFIX}*.png"), figures_dir / f"{TRANSITIONS}.png"]:
+        if stale.stem not in figures and stale.exists():
             stale.unlink()
 
     page = out_dir / "report.html"

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from experiments.sweep.report_figures import DASH, MAX_BEST_DRAWN, cell, number
+from experiments.sweep.report_verdicts import verdict_html
 from feeders.design import PARAMETER_NAMES
 
 _STYLE = """
@@ -154,21 +155,24 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     )
     parts.append(_figure(figures, "survivors", "survivors per level"))
 
+    parts += verdict_html(summary, figures, _table, _figure)
+
     parts.append("<h2>Speed-up of the ladder</h2>")
     parts.append(f"<p>{e(_speedup_text(summary.get('speedup')))}</p>")
 
-    parts.append("<h2>Pruning (vs the top level, on the holdout)</h2>")
+    truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
+    parts.append(f"<h2>Pruning (vs {e(truth)}, on the holdout)</h2>")
     pruning = list(summary.get("pruning") or [])
     if pruning:
-        parts.append("<p>Each lower level's own verdict against the top level's:</p>")
+        parts.append(f"<p>Each other level's own verdict against {e(truth)}'s:</p>")
         parts.append(_pruning_table(pruning))
     else:
         parts.append("<p>No holdout designs: the pruning is not measured.</p>")
     cumulative = list(summary.get("ladder_pruning") or [])  # optional: the ladder so far
     if cumulative:
         parts.append(
-            "<p>The ladder up to each level (passed it and every level below it) against the "
-            "top level's verdict:</p>"
+            "<p>The ladder up to each level (passed it and every level below it) against "
+            f"{e(truth)}'s verdict:</p>"
         )
         parts.append(_pruning_table(cumulative))
     parts.append(_figure(figures, "pruning", "precision and recall per level"))
@@ -218,10 +222,12 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     if best:
         parts.append(
             _table(
-                ["design", "exit time (s)", *PARAMETER_NAMES],
+                ["design", "P(both)", "95% CI", "exit time (s)", *PARAMETER_NAMES],
                 [
                     [
                         cell(row.get("design_id")),
+                        cell(((row.get("verdict") or {}).get("both") or {}).get("p"), ".3f"),
+                        _interval(((row.get("verdict") or {}).get("both") or {}).get("interval")),
                         cell(row.get("exit_time_s"), ".3f"),
                         *(cell(v, ".4g") for v in (row.get("values") or [])),
                     ]
