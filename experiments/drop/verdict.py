@@ -82,12 +82,14 @@ class VerdictSettings:
 
 @dataclass(frozen=True)
 class Trial:
-    """One trial: per entry orientation, success, outcome class and T (s; nan if unbuilt)."""
+    """One trial: per entry orientation, success, outcome class, T (s) and the distance
+    ||q(T) - q_goal|| of Eq. 10 (both nan if unbuilt)."""
 
     index: int
     success: tuple[bool, ...]
     outcome: tuple[str, ...]
     T: tuple[float, ...]
+    goal_error: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -193,9 +195,9 @@ def run_trial(
         scene = make_scene(perturbation)
     except DegenerateDesign:
         n = len(orientations)
-        return Trial(index, (False,) * n, (UNBUILDABLE,) * n, (math.nan,) * n)
+        return Trial(index, (False,) * n, (UNBUILDABLE,) * n, (math.nan,) * n, (math.nan,) * n)
     level = DynamicLevel(scene, step=settings.step)
-    success, outcome, times = [], [], []
+    success, outcome, times, errors = [], [], [], []
     for k, orientation in enumerate(orientations):
         start = entry_state(
             level,
@@ -207,7 +209,8 @@ def run_trial(
         success.append(result.success)
         outcome.append(classify(scene, result.end, result.final_pose, result.success))
         times.append(result.T)
-    return Trial(index, tuple(success), tuple(outcome), tuple(times))
+        errors.append(result.goal_error)
+    return Trial(index, tuple(success), tuple(outcome), tuple(times), tuple(errors))
 
 
 def looks(settings: VerdictSettings) -> list[int]:
@@ -264,7 +267,20 @@ def design_verdict(
     default mu), both entries (:data:`feeders.feeder.ORIENTATIONS`); ``feeder_options`` go to
     :func:`feeders.feeder.build_feeder`."""
     settings = settings or VerdictSettings()
-    build_feeder(design, part, **feeder_options)  # DegenerateDesign at once for the nominal
+    make_scene = made_feeders(design, part, friction, **feeder_options)
+    return verdict_of(make_scene, ORIENTATIONS, settings, seed)
+
+
+def made_feeders(
+    design: DesignParameters,
+    part: Peg = DEFAULT_PEG,
+    friction: float | None = None,
+    **feeder_options,
+) -> Callable[[DropDraw], Scene]:
+    """The feeder of ``design`` as made for one trial's draw (toleranced parameters, the
+    part batch's friction), for :func:`run_trial`. Raises
+    :class:`feeders.feeder.DegenerateDesign` at once if the nominal design cannot be built."""
+    build_feeder(design, part, **feeder_options)
     options = dict(feeder_options)
     mu = DEFAULT_FRICTION if friction is None else friction
 
@@ -272,7 +288,7 @@ def design_verdict(
         made = toleranced(design, d.design_factors)
         return build_feeder(made, part, friction=mu * d.friction_factor, **options)
 
-    return verdict_of(make_scene, ORIENTATIONS, settings, seed)
+    return make_scene
 
 
 def scene_verdict(scene: Scene, settings: VerdictSettings | None = None, seed: int = 0) -> Verdict:

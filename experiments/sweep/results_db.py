@@ -29,12 +29,12 @@ from __future__ import annotations
 
 import json
 import sqlite3
-import stat
 import time
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from experiments.database_file import check_file, table_columns
 from feeders.design import PARAMETER_NAMES
 
 STATUSES = ("feasible", "infeasible", "degenerate")
@@ -128,67 +128,11 @@ class ResultsDamaged(ValueError):
     """The file is not a sound results database: damaged, truncated or of another schema."""
 
 
-SQLITE_HEADER = b"SQLite format 3\x00"
-FULL_CHECK_BYTES = 256 << 20  # ``integrity_check`` up to this size, ``quick_check`` above
-
-
 def _damaged(path: Path, problem: str) -> ResultsDamaged:
     return ResultsDamaged(
         f"results database '{path}' {problem}; nothing was written to it: move it aside "
         "(or delete it) and run the same command again to redo the sweep"
     )
-
-
-def _expected_columns() -> dict[str, list[str]]:
-    """Table -> column names of ``_SCHEMA``, from an empty in-memory database built by it."""
-    db = sqlite3.connect(":memory:")
-    try:
-        db.executescript(_SCHEMA)
-        return _columns(db)
-    finally:
-        db.close()
-
-
-def _ours(columns: dict[str, list[str]]) -> bool:
-    """Whether tables with ``columns`` are ours: each as ``_SCHEMA`` makes it, and only tables
-    a newer version added may be missing (``connect`` creates them: a sweep of the version
-    before the ``verdicts`` table resumes)."""
-    expected = _expected_columns()
-    added_later = {"verdicts"}
-    return (
-        all(expected.get(t) == c for t, c in columns.items())
-        and set(expected) - set(columns) <= added_later
-    )
-
-
-def _columns(db: sqlite3.Connection) -> dict[str, list[str]]:
-    tables = [
-        r[0]
-        for r in db.execute(
-            "SELECT name FROM sqlite_master WHERE type = 'table' AND name NOT LIKE 'sqlite_%'"
-        )
-    ]
-    return {t: [r[1] for r in db.execute(f'PRAGMA table_info("{t}")')] for t in tables}
-
-
-def _header_problem(header: bytes, size: int) -> str | None:
-    """What SQLite's 100-byte file header says is wrong with a file of ``size`` bytes: not
-    SQLite's magic, a page size that is not a power of two in [512, 65536], a size that is not
-    a whole number of pages, or fewer pages than the header counts (a truncated file, whose
-    missing pages SQLite would read as zeros)."""
-    if len(header) < 100 or not header.startswith(SQLITE_HEADER):
-        return "is not an SQLite database (its header is wrong)"
-    page = int.from_bytes(header[16:18], "big")
-    page = 65536 if page == 1 else page
-    if page < 512 or page & (page - 1):
-        return f"has a damaged header (page size {page})"
-    if size % page:
-        return f"is truncated or damaged ({size} bytes is not a whole number of {page}-byte pages)"
-    counted = int.from_bytes(header[28:32], "big")
-    valid = header[92:96] == header[24:28]  # the count is current (SQLite >= 3.7.0)
-    if valid and counted * page > size:
-        return f"is truncated (its header counts {counted} pages, the file holds {size // page})"
-    return None
 
 
 def _content_problem(db: sqlite3.Connection) -> str | None:
@@ -259,7 +203,7 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
             OR heavy_leading NOT BETWEEN 0 AND trials OR heavy_trailing NOT BETWEEN 0 AND trials
             OR both_entries NOT BETWEEN 0 AND min(heavy_leading, heavy_trailing)""",
     }
-    present = set(_columns(db))
+    present = set(table_columns(db))
     for table, condition in checks.items():
         if table not in present:
             continue
@@ -284,49 +228,17 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
 
 def check_database(path: str | Path) -> bool:
     """Refuse (:class:`ResultsDamaged`) a file at ``path`` that is not a sound results
-    database, reading only: a header that is not SQLite's, a file that SQLite finds damaged
-    (``PRAGMA integrity_check``, or ``quick_check`` above ``FULL_CHECK_BYTES``: it skips
-    matching indexes to tables, and is linear in the file), tables other than ours, or rows
-    this module cannot have written (:func:`_content_problem`). A missing or empty file passes
-    (it becomes a new database). Damage that leaves every page and value well-formed (a changed
-    digit inside a plausible number) is not detectable: SQLite keeps no checksums. Returns
-    whether it holds our tables (False: missing, empty or new)."""
-    path = Path(path)
-    try:
-        info = path.stat()
-    except FileNotFoundError:
-        return False
-    if not stat.S_ISREG(info.st_mode):  # a FIFO would block the read below
-        raise _damaged(path, "is not a regular file")
-    size = info.st_size
-    if size == 0:
-        return False
-    with path.open("rb") as handle:
-        header = handle.read(100)
-    problem = _header_problem(header, size)
-    if problem:
-        raise _damaged(path, problem)
-    check = "integrity_check" if size <= FULL_CHECK_BYTES else "quick_check"
-    columns: dict[str, list[str]] = {}
-    try:
-        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
-        try:
-            rows = [r[0] for r in db.execute(f"PRAGMA {check}(1)")]
-            if rows == ["ok"]:
-                columns = _columns(db)
-                if _ours(columns):
-                    content = _content_problem(db)
-                    if content:
-                        rows = [content]
-        finally:
-            db.close()
-    except sqlite3.DatabaseError as exc:
-        raise _damaged(path, f"cannot be read ({exc})") from None
-    if rows != ["ok"]:
-        raise _damaged(path, f"is damaged (SQLite's {check}: {rows[0] if rows else 'no answer'})")
-    if columns and not _ours(columns):
-        raise _damaged(path, "has tables that are not a partfeeder results database's")
-    return bool(columns)
+    database (:func:`experiments.database_file.check_file`; the rows checked by
+    :func:`_content_problem`). Returns whether it holds our tables (False: missing, empty or
+    new)."""
+    return check_file(
+        path,
+        _SCHEMA,
+        _damaged,
+        "results database",
+        added_later={"verdicts"},
+        content_problem=_content_problem,
+    )
 
 
 def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
@@ -448,7 +360,7 @@ def _record_verdict(db: sqlite3.Connection, design_id: int, verdict: dict, seed:
 def verdicts(db: sqlite3.Connection) -> dict[int, dict[str, Any]]:
     """design_id -> its stored passive verdict (``Verdict.to_dict()``, with ``seed``); none
     in a database made before the ``verdicts`` table (opened read-only, it lacks it)."""
-    if "verdicts" not in _columns(db):
+    if "verdicts" not in table_columns(db):
         return {}
     return {
         int(r["design_id"]): {**json.loads(r["verdict"]), "seed": int(r["seed"])}
