@@ -33,3 +33,5 @@ PRESET_NAMES = (
 )
 # Where a sweep's jobs run (experiments.sweep.executors): local processes or a Dask cluster.
 EXECUTOR_NAMES = ("local", "dask")
+# Derivative-free optimisers of ``partfeeder optimize`` (experiments.optimize.methods).
+OPTIMIZER_NAMES = ("differential-evolution", "cma-es", "nelder-mead", "powell")

@@ -45,6 +45,9 @@ SUBCOMMANDS: tuple[Subcommand, ...] = (
                "the main job: Halton designs up the ladder of levels (geometric, kinematic, "
                "dynamic) through OMPL's Benchmark; resumes when started again"),
     Subcommand("report", "experiments.cli.report", "summary and HTML report of a sweep directory"),
+    Subcommand("optimize", "experiments.cli.optimize",
+               "the design optimisation (Eq. 10-11), robust to perturbation; resumes when "
+               "started again"),
     Subcommand("stress", "experiments.stress.command", "the numerical stress suite of the levels"),
 )
 # fmt: on

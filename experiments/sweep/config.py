@@ -260,15 +260,22 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
 
 def load_config(path: str | Path) -> SweepConfig:
     """Read a config file (or a shipped config by name: ``default``, ``paper``)."""
-    path = Path(path)
-    shipped = CONFIG_DIR / f"{path.name}.yaml"
-    if len(path.parts) == 1 and path.suffix == "" and not _exists(path) and _exists(shipped):
-        path = shipped
+    path = resolve_config(path)
     data = read_yaml(path, "config", ConfigError)
     try:
         return config_from_dict(data, name=path.stem)
     except ConfigError as exc:
         raise ConfigError(f"{shown(path)}: {exc}") from None
+
+
+def resolve_config(path: str | Path) -> Path:
+    """``path``, or the shipped config of that name (``experiments/configs/NAME.yaml``) when
+    ``path`` is a bare name with no suffix and no such file here."""
+    path = Path(path)
+    shipped = CONFIG_DIR / f"{path.name}.yaml"
+    if len(path.parts) == 1 and path.suffix == "" and not _exists(path) and _exists(shipped):
+        return shipped
+    return path
 
 
 def _exists(path: Path) -> bool:

@@ -76,47 +76,60 @@ def _run_alone(evaluate: Evaluate, job: Job) -> tuple[str, Any]:
     return outcome
 
 
-def run_local(
-    evaluate: Evaluate,
-    jobs: Iterable[Job],
-    on_done: OnDone,
-    on_quarantine: OnQuarantine,
-    workers: int = 2,
-    max_attempts: int = 2,
-) -> None:
-    """Run ``jobs`` and the jobs that ``on_done`` returns, ``workers`` at a time.
+class LocalPool:
+    """A pool of ``workers`` local processes that lives across calls of :meth:`run` (an
+    optimiser sends a batch at a time; starting workers costs seconds each). A context
+    manager: the processes end with it."""
 
-    ``on_done(job, result, attempts)`` is called here as each job finishes (in completion
-    order) and returns the jobs that follow from it; ``on_quarantine(job, attempts, reason)``
-    for a job given up. At most ``workers`` jobs are in flight, so a broken pool takes down
-    no more than that.
-    """
-    queue: deque[Job] = deque(jobs)
-    suspects: deque[Job] = deque()
-    deaths: dict[int, int] = {}
-    context = multiprocessing.get_context("spawn")
+    def __init__(self, workers: int = 2, max_attempts: int = 2):
+        self.workers = workers
+        self.max_attempts = max_attempts
+        self._context = multiprocessing.get_context("spawn")
+        self._pool: ProcessPoolExecutor | None = None
 
-    def new_pool() -> ProcessPoolExecutor:
-        return ProcessPoolExecutor(workers, mp_context=context, initializer=quiet_worker)
+    def __enter__(self) -> LocalPool:
+        self._pool = self._new_pool()
+        return self
 
-    pool = new_pool()
-    inflight: dict[Future, Job] = {}
+    def __exit__(self, *exc: object) -> None:
+        if self._pool is not None:
+            self._pool.shutdown(wait=True, cancel_futures=True)
+            self._pool = None
 
-    def settle(future: Future) -> bool:
-        """Hand a finished future's job on; True if its worker (and so the pool) died."""
-        job = inflight.pop(future)
-        try:
-            result = future.result()
-        except BrokenProcessPool:
-            suspects.append(job)
-            return True
-        except Exception as exc:
-            on_quarantine(job, 1, _error(exc))
-        else:
-            queue.extend(on_done(job, result, 1))
-        return False
+    def _new_pool(self) -> ProcessPoolExecutor:
+        return ProcessPoolExecutor(self.workers, mp_context=self._context, initializer=quiet_worker)
 
-    try:
+    def run(
+        self, evaluate: Evaluate, jobs: Iterable[Job], on_done: OnDone, on_quarantine: OnQuarantine
+    ) -> None:
+        """Run ``jobs`` and the jobs that ``on_done`` returns, ``workers`` at a time; returns
+        when all are done.
+
+        ``on_done(job, result, attempts)`` is called here as each job finishes (in completion
+        order) and returns the jobs that follow from it; ``on_quarantine(job, attempts,
+        reason)`` for a job given up. At most ``workers`` jobs are in flight, so a broken pool
+        takes down no more than that.
+        """
+        assert self._pool is not None, "use LocalPool as a context manager"
+        queue: deque[Job] = deque(jobs)
+        suspects: deque[Job] = deque()
+        deaths: dict[int, int] = {}
+        inflight: dict[Future, Job] = {}
+
+        def settle(future: Future) -> bool:
+            """Hand a finished future's job on; True if its worker (and so the pool) died."""
+            job = inflight.pop(future)
+            try:
+                result = future.result()
+            except BrokenProcessPool:
+                suspects.append(job)
+                return True
+            except Exception as exc:
+                on_quarantine(job, 1, _error(exc))
+            else:
+                queue.extend(on_done(job, result, 1))
+            return False
+
         while queue or inflight or suspects:
             if suspects and not inflight:
                 job = suspects.popleft()
@@ -128,7 +141,7 @@ def run_local(
                     on_quarantine(job, deaths.get(key, 0) + 1, value)
                 else:
                     deaths[key] = deaths.get(key, 0) + 1
-                    if deaths[key] >= max_attempts:
+                    if deaths[key] >= self.max_attempts:
                         on_quarantine(
                             job,
                             deaths[key],
@@ -137,19 +150,31 @@ def run_local(
                     else:
                         suspects.append(job)
                 continue
-            while queue and len(inflight) < workers and not suspects:
+            while queue and len(inflight) < self.workers and not suspects:
                 job = queue.popleft()
-                inflight[pool.submit(evaluate, job)] = job
+                inflight[self._pool.submit(evaluate, job)] = job
             done, _ = wait(inflight, return_when=FIRST_COMPLETED)
             broken = [settle(future) for future in done]
             if any(broken):
                 wait(inflight)  # the others fail with the pool: they become suspects too
                 for future in list(inflight):
                     settle(future)
-                pool.shutdown(wait=True, cancel_futures=True)
-                pool = new_pool()
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+                self._pool.shutdown(wait=True, cancel_futures=True)
+                self._pool = self._new_pool()
+
+
+def run_local(
+    evaluate: Evaluate,
+    jobs: Iterable[Job],
+    on_done: OnDone,
+    on_quarantine: OnQuarantine,
+    workers: int = 2,
+    max_attempts: int = 2,
+) -> None:
+    """:meth:`LocalPool.run` on a pool of its own: ``jobs``, and the jobs that ``on_done``
+    returns, ``workers`` at a time."""
+    with LocalPool(workers, max_attempts) as pool:
+        pool.run(evaluate, jobs, on_done, on_quarantine)
 
 
 SCHEDULER_TIMEOUT_S = 2.0  # to reach the scheduler and hear it answer
@@ -229,37 +254,51 @@ def check_scheduler(address: str, timeout: float = SCHEDULER_TIMEOUT_S) -> None:
         )
 
 
-def run_dask(
-    evaluate: Evaluate,
-    jobs: Iterable[Job],
-    on_done: OnDone,
-    on_quarantine: OnQuarantine,
-    scheduler: str,
-) -> None:
-    """The same as :func:`run_local` on the Dask cluster whose scheduler is at ``scheduler``
-    (``tcp://host:port``). Its workers need partfeeder installed. Dask replaces a dead worker
-    and reschedules its task; after the scheduler's ``distributed.scheduler.allowed-failures``
-    deaths (Dask's setting, 3 by default, not the config's ``max_attempts``) it gives up
-    (``KilledWorker``) and the job is quarantined.
-    """
-    try:
-        from distributed import Client, as_completed
-    except ImportError:
-        raise RuntimeError(
-            "the dask executor needs Dask's distributed scheduler: "
-            "pip install 'partfeeder[dask]' (or: pip install distributed)"
-        ) from None
-    try:
-        from distributed.scheduler import KilledWorker
-    except ImportError:  # older releases
-        from distributed import KilledWorker  # type: ignore[attr-defined,no-redef]
+class DaskPool:
+    """The Dask cluster whose scheduler is at ``scheduler`` (``tcp://host:port``), connected
+    across calls of :meth:`run`; a context manager. Its workers need partfeeder installed.
+    Dask replaces a dead worker and reschedules its task; after the scheduler's
+    ``distributed.scheduler.allowed-failures`` deaths (Dask's setting, 3 by default, not the
+    config's ``max_attempts``) it gives up (``KilledWorker``) and the job is quarantined."""
 
-    import dask
+    def __init__(self, scheduler: str):
+        self.scheduler = scheduler
+        self._client: Any = None
 
-    deaths = int(dask.config.get("distributed.scheduler.allowed-failures", 3)) + 1
-    check_scheduler(scheduler)
-    with Client(scheduler, set_as_default=False, timeout=10) as client:
-        client.run(quiet_worker)
+    def __enter__(self) -> DaskPool:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise RuntimeError(
+                "the dask executor needs Dask's distributed scheduler: "
+                "pip install 'partfeeder[dask]' (or: pip install distributed)"
+            ) from None
+        check_scheduler(self.scheduler)
+        self._client = Client(self.scheduler, set_as_default=False, timeout=10)
+        self._client.run(quiet_worker)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._client is not None:
+            self._client.close()
+            self._client = None
+
+    def run(
+        self, evaluate: Evaluate, jobs: Iterable[Job], on_done: OnDone, on_quarantine: OnQuarantine
+    ) -> None:
+        """The same as :meth:`LocalPool.run`, on the cluster."""
+        from distributed import as_completed
+
+        try:
+            from distributed.scheduler import KilledWorker
+        except ImportError:  # older releases
+            from distributed import KilledWorker  # type: ignore[attr-defined,no-redef]
+
+        import dask
+
+        client = self._client
+        assert client is not None, "use DaskPool as a context manager"
+        deaths = int(dask.config.get("distributed.scheduler.allowed-failures", 3)) + 1
         futures = {}
         for job in jobs:
             futures[client.submit(evaluate, job, pure=False)] = job
@@ -277,3 +316,24 @@ def run_dask(
                     new = client.submit(evaluate, follow, pure=False)
                     futures[new] = follow
                     pending.add(new)
+
+
+def run_dask(
+    evaluate: Evaluate,
+    jobs: Iterable[Job],
+    on_done: OnDone,
+    on_quarantine: OnQuarantine,
+    scheduler: str,
+) -> None:
+    """:meth:`DaskPool.run` on a connection of its own to the scheduler at ``scheduler``."""
+    with DaskPool(scheduler) as pool:
+        pool.run(evaluate, jobs, on_done, on_quarantine)
+
+
+def open_pool(executor: str, workers: int, max_attempts: int, scheduler: str | None):
+    """The pool of ``executor`` (``local`` or ``dask``), not yet entered."""
+    if executor == "dask":
+        if not scheduler:
+            raise ValueError("the dask executor needs a scheduler address")
+        return DaskPool(scheduler)
+    return LocalPool(workers, max_attempts)

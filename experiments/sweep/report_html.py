@@ -15,7 +15,7 @@ from experiments.sweep.report_figures import DASH, MAX_BEST_DRAWN, cell, number
 from experiments.sweep.report_verdicts import verdict_html
 from feeders.design import PARAMETER_NAMES
 
-_STYLE = """
+STYLE = """
 body { font-family: sans-serif; margin: 2em; max-width: 1200px; color: #222; }
 table { border-collapse: collapse; margin: 0.5em 0 1.5em 0; font-size: 0.9em; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
@@ -35,7 +35,9 @@ def _interval(ci: Any, spec: str = ".2f") -> str:
     return f"[{format(low, spec)}, {format(high, spec)}]"
 
 
-def _table(headers: Sequence[str], rows: list[list[str]], text_columns: Sequence[int] = ()) -> str:
+def html_table(
+    headers: Sequence[str], rows: list[list[str]], text_columns: Sequence[int] = ()
+) -> str:
     """An HTML table; every cell is escaped here (callers pass plain text)."""
     head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
     body = []
@@ -50,7 +52,7 @@ def _table(headers: Sequence[str], rows: list[list[str]], text_columns: Sequence
     return f"<table>\n<tr>{head}</tr>\n" + "\n".join(body) + "\n</table>"
 
 
-def _figure(figures: dict[str, Path], name: str, alt: str) -> str:
+def figure_html(figures: dict[str, Path], name: str, alt: str) -> str:
     if name not in figures:
         return ""
     src = f"figures/{figures[name].name}"
@@ -73,7 +75,7 @@ def _speedup_text(speedup: dict | None) -> str:
 
 
 def _pruning_table(rows: list[dict]) -> str:
-    return _table(
+    return html_table(
         ["level", "n", "tp", "fp", "fn", "tn", "precision", "95% CI", "recall", "95% CI"],
         [
             [
@@ -100,7 +102,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         "<head>",
         '<meta charset="utf-8">',
         f"<title>Sweep report: {e(name)}</title>",
-        f"<style>{_STYLE}</style>",
+        f"<style>{STYLE}</style>",
         "</head>",
         "<body>",
         f"<h1>Sweep report: {e(name)}</h1>",
@@ -131,7 +133,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         for row in summary.get("levels") or []
     ]
     parts.append(
-        _table(
+        html_table(
             [
                 "level",
                 "rung",
@@ -153,9 +155,9 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         '<p class="note">Survivors: designs that passed this level and every level below it. '
         "Wall time: the sum over the level's evaluations, in their workers.</p>"
     )
-    parts.append(_figure(figures, "survivors", "survivors per level"))
+    parts.append(figure_html(figures, "survivors", "survivors per level"))
 
-    parts += verdict_html(summary, figures, _table, _figure)
+    parts += verdict_html(summary, figures, html_table, figure_html)
 
     parts.append("<h2>Speed-up of the ladder</h2>")
     parts.append(f"<p>{e(_speedup_text(summary.get('speedup')))}</p>")
@@ -175,7 +177,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
             f"{e(truth)}'s verdict:</p>"
         )
         parts.append(_pruning_table(cumulative))
-    parts.append(_figure(figures, "pruning", "precision and recall per level"))
+    parts.append(figure_html(figures, "pruning", "precision and recall per level"))
 
     parts.append("<h2>Planners</h2>")
     planner_rows = [
@@ -192,7 +194,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     ]
     if planner_rows:
         parts.append(
-            _table(
+            html_table(
                 [
                     "level",
                     "planner",
@@ -208,20 +210,20 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         )
     else:
         parts.append("<p>No planner runs yet.</p>")
-    parts.append(_figure(figures, "planners", "planner comparison per level"))
+    parts.append(figure_html(figures, "planners", "planner comparison per level"))
 
     parts.append("<h2>Feasible set in design space</h2>")
     parts.append(
         '<p class="note">Every design of the database, coloured by the highest level it passed '
         "together with every level below it (as the paper's Fig. 2, Z<sub>F</sub>).</p>"
     )
-    parts.append(_figure(figures, "feasible_set", "feasible set: scatter matrix of the design"))
+    parts.append(figure_html(figures, "feasible_set", "feasible set: scatter matrix of the design"))
 
     parts.append("<h2>Best designs</h2>")
     best = list(summary.get("best") or [])
     if best:
         parts.append(
-            _table(
+            html_table(
                 ["design", "P(both)", "95% CI", "exit time (s)", *PARAMETER_NAMES],
                 [
                     [
@@ -239,13 +241,13 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
             parts.append(f'<p class="note">The first {MAX_BEST_DRAWN} are drawn.</p>')
     else:
         parts.append("<p>No design has an exit time yet.</p>")
-    parts.append(_figure(figures, "best_designs", "drawings of the best designs"))
+    parts.append(figure_html(figures, "best_designs", "drawings of the best designs"))
 
     parts.append("<h2>Quarantined</h2>")
     quarantined = list(summary.get("quarantined") or [])
     if quarantined:
         parts.append(
-            _table(
+            html_table(
                 ["design", "level", "attempts", "reason"],
                 [
                     [

@@ -49,6 +49,9 @@ def with_verdicts(summary: dict) -> list[dict]:
 
 
 def strip_name(design_id: Any) -> str:
+    """The figure name of a design's strip: a sweep's design id, or a label (``optimum``)."""
+    if isinstance(design_id, str):
+        return f"{STRIP_PREFIX}_{design_id}"
     return f"{STRIP_PREFIX}{int(design_id):06d}"
 
 
@@ -227,11 +230,11 @@ def verdict_html(
     )
     parts.append(figure(figures, TRANSITIONS, "transition matrices of the designs that work"))
     for entry in best:
-        parts += _design_section(entry, figures, table, figure)
+        parts += design_verdict_html(entry, figures, table, figure)
     return parts
 
 
-def _design_section(entry, figures, table, figure) -> list[str]:
+def design_verdict_html(entry, figures, table, figure) -> list[str]:
     v = entry["verdict"]
     d = entry["design_id"]
     rows = []

@@ -1,0 +1,242 @@
+"""The config of ``partfeeder optimize``: the objective, where to start, which methods, how
+the optimum is judged.
+
+Read from YAML with ``yaml.safe_load`` and validated field by field; an error names the field
+and its allowed range. Example (``experiments/configs/optimize.yaml``)::
+
+    name: optimize
+    feeder: {friction: 0.05, restitution: 0.3}   # the scene's environment, as a sweep's
+    objective:
+      trials: 16          # K: fixed perturbation draws per evaluation (common to all designs)
+      seed: 0             # of those draws
+      weight: 5.0         # w of Eq. 10
+      step: 0.001         # the dynamic level's h (s)
+      t_max: 10.0         # longest drop (s): Eq. 10's T is capped there
+    perturbations: {position: 0.05, yaw: 0.05, speed: 0.05, friction: 0.2, tolerance: 0.01}
+    start:
+      presets: [table3]   # named designs of the paper (feeders.design.PRESETS)
+      sweep_best: 6       # with --from SWEEP_DIR: that sweep's best designs by their verdict
+    methods:              # each run on the same budget of evaluations, once per seed
+      - {method: differential-evolution, budget: 600, seeds: [0], population: 20}
+      - {method: nelder-mead, budget: 600, seeds: [0]}
+    final: {trials: 100, seed: 1000, target: 0.9}   # the optimum's verdict, fresh draws
+    workers: 2
+    max_attempts: 2
+
+Everything is plain data, so a config travels to worker processes and Dask workers as is.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from experiments.drop.perturbations import Perturbations
+from experiments.names import OPTIMIZER_NAMES, PRESET_NAMES
+from experiments.sweep.config import resolve_config
+from feeders.fields import (
+    FieldError,
+    field_errors_as,
+    integer_field,
+    mapping_field,
+    name_field,
+    number_field,
+    read_yaml,
+    shown,
+)
+from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
+
+MAX_BUDGET = 1_000_000
+MAX_TRIALS = 10_000
+
+
+class OptimizeConfigError(FieldError):
+    """An optimisation config that cannot be read or is not valid; names the field."""
+
+
+@dataclass(frozen=True)
+class Method:
+    """One optimisation method, run once per seed on ``budget`` evaluations; ``population``
+    for the population methods (differential evolution, CMA-ES; None: the method's own)."""
+
+    method: str
+    budget: int
+    seeds: tuple[int, ...] = (0,)
+    population: int | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {
+            "method": self.method,
+            "budget": self.budget,
+            "seeds": list(self.seeds),
+        }
+        if self.population is not None:
+            out["population"] = self.population
+        return out
+
+
+@dataclass(frozen=True)
+class OptimizeConfig:
+    """A validated optimisation config (module docstring for the fields)."""
+
+    name: str
+    methods: tuple[Method, ...]
+    feeder: dict[str, Any] = field(default_factory=dict)
+    trials: int = 16
+    seed: int = 0
+    weight: float = 5.0
+    step: float = 0.001
+    t_max: float = 10.0
+    perturbations: dict[str, float] = field(default_factory=lambda: Perturbations().to_dict())
+    presets: tuple[str, ...] = ("table3",)
+    sweep_best: int = 6
+    final_trials: int = 100
+    final_seed: int = 1000
+    final_target: float = 0.9
+    workers: int = 2
+    max_attempts: int = 2
+
+    def to_dict(self) -> dict[str, Any]:
+        """The config as the YAML document it came from (normalised; plain data)."""
+        return {
+            "name": self.name,
+            "feeder": dict(self.feeder),
+            "objective": {
+                "trials": self.trials,
+                "seed": self.seed,
+                "weight": self.weight,
+                "step": self.step,
+                "t_max": self.t_max,
+            },
+            "perturbations": dict(self.perturbations),
+            "start": {"presets": list(self.presets), "sweep_best": self.sweep_best},
+            "methods": [m.to_dict() for m in self.methods],
+            "final": {
+                "trials": self.final_trials,
+                "seed": self.final_seed,
+                "target": self.final_target,
+            },
+            "workers": self.workers,
+            "max_attempts": self.max_attempts,
+        }
+
+    def objective_key(self) -> str:
+        """A digest of what decides an evaluation's value (feeder, objective, perturbations):
+        the stored evaluations belong to one key."""
+        data = self.to_dict()
+        keep = {k: data[k] for k in ("feeder", "objective", "perturbations")}
+        return hashlib.sha256(json.dumps(keep, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def _method(spec: Any, field_name: str) -> Method:
+    spec = mapping_field(spec, field_name, {"method", "budget", "seeds", "population"})
+    name = spec.get("method")
+    if name not in OPTIMIZER_NAMES:
+        raise OptimizeConfigError(
+            f"{field_name}.method = {shown(repr(name))}; allowed: {', '.join(OPTIMIZER_NAMES)}"
+        )
+    if "budget" not in spec:
+        raise OptimizeConfigError(f"{field_name}.budget is required (evaluations per seed)")
+    budget = integer_field(spec["budget"], f"{field_name}.budget", 1, MAX_BUDGET)
+    seeds_spec = spec.get("seeds", [0])
+    if not isinstance(seeds_spec, list) or not seeds_spec or len(seeds_spec) > 1000:
+        raise OptimizeConfigError(
+            f"{field_name}.seeds: expected a list of 1 to 1000 seeds, got {shown(repr(seeds_spec))}"
+        )
+    seeds = tuple(
+        integer_field(s, f"{field_name}.seeds[{i}]", 0, 2**31 - 1) for i, s in enumerate(seeds_spec)
+    )
+    if len(set(seeds)) != len(seeds):
+        raise OptimizeConfigError(f"{field_name}.seeds: {list(seeds)} has a seed twice")
+    population = None
+    if spec.get("population") is not None:
+        population = integer_field(spec["population"], f"{field_name}.population", 5, 10_000)
+    return Method(name, budget, seeds, population)
+
+
+def config_from_dict(data: Any, name: str = "optimize") -> OptimizeConfig:
+    """Validate a parsed YAML document; raises :class:`OptimizeConfigError` naming the field."""
+    with field_errors_as(OptimizeConfigError):
+        return _config_from_dict(data, name)
+
+
+def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
+    data = mapping_field(
+        data,
+        "config",
+        {
+            "name",
+            "feeder",
+            "objective",
+            "perturbations",
+            "start",
+            "methods",
+            "final",
+            "workers",
+            "max_attempts",
+        },
+    )
+    feeder = mapping_field(data.get("feeder", {}) or {}, "feeder", set(ENVIRONMENT_KEYS))
+    environment_from_dict(feeder, prefix="feeder.")  # validate now, not in a worker
+    objective = mapping_field(
+        data.get("objective", {}) or {}, "objective", {"trials", "seed", "weight", "step", "t_max"}
+    )
+    noise = mapping_field(
+        data.get("perturbations", {}) or {},
+        "perturbations",
+        set(Perturbations.__dataclass_fields__),
+    )
+    try:
+        perturbations = Perturbations(**noise)
+    except ValueError as exc:
+        raise OptimizeConfigError(str(exc)) from None
+    start = mapping_field(data.get("start", {}) or {}, "start", {"presets", "sweep_best"})
+    presets = start.get("presets", ["table3"])
+    if not isinstance(presets, list) or len(presets) > len(PRESET_NAMES):
+        raise OptimizeConfigError(
+            f"start.presets: expected a list of preset names, got {shown(repr(presets))}"
+        )
+    for i, preset in enumerate(presets):
+        if preset not in PRESET_NAMES:
+            raise OptimizeConfigError(
+                f"start.presets[{i}] = {shown(repr(preset))}; presets: {', '.join(PRESET_NAMES)}"
+            )
+    methods_spec = data.get("methods")
+    if not isinstance(methods_spec, list) or not methods_spec or len(methods_spec) > 100:
+        raise OptimizeConfigError("methods: expected a list of 1 to 100 methods to run")
+    methods = tuple(_method(m, f"methods[{i}]") for i, m in enumerate(methods_spec))
+    names = [m.method for m in methods]
+    if len(set(names)) != len(names):
+        raise OptimizeConfigError(f"methods: {names} has a method twice (give it more seeds)")
+    final = mapping_field(data.get("final", {}) or {}, "final", {"trials", "seed", "target"})
+    return OptimizeConfig(
+        name=name_field(data.get("name", name)),
+        methods=methods,
+        feeder=dict(feeder),
+        trials=integer_field(objective.get("trials", 16), "objective.trials", 1, MAX_TRIALS),
+        seed=integer_field(objective.get("seed", 0), "objective.seed", 0, 2**31 - 1),
+        weight=number_field(objective.get("weight", 5.0), "objective.weight", 0.0, 1e6),
+        step=number_field(objective.get("step", 0.001), "objective.step", 1e-6, 0.1),
+        t_max=number_field(objective.get("t_max", 10.0), "objective.t_max", 1e-3, 3600.0),
+        perturbations=perturbations.to_dict(),
+        presets=tuple(presets),
+        sweep_best=integer_field(start.get("sweep_best", 6), "start.sweep_best", 0, 1000),
+        final_trials=integer_field(final.get("trials", 100), "final.trials", 1, MAX_TRIALS),
+        final_seed=integer_field(final.get("seed", 1000), "final.seed", 0, 2**31 - 1),
+        final_target=number_field(final.get("target", 0.9), "final.target", 0.0, 1.0),
+        workers=integer_field(data.get("workers", 2), "workers", 1, 1024),
+        max_attempts=integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100),
+    )
+
+
+def load_config(path: str | Path) -> OptimizeConfig:
+    """Read a config file (or a shipped one by name, e.g. ``optimize``)."""
+    path = resolve_config(path)
+    data = read_yaml(path, "config", OptimizeConfigError)
+    try:
+        return config_from_dict(data, name=path.stem)
+    except OptimizeConfigError as exc:
+        raise OptimizeConfigError(f"{shown(path)}: {exc}") from None

@@ -1,0 +1,268 @@
+"""The report of an optimisation: ``report.html`` with its figures in ``figures/``.
+
+Sections: the optimum beside the paper's table3 (its 12 values, as the paper's Table 3, with
+Table 2's box), both designs' verdicts on fresh draws (probability with interval, transition
+matrix, the strips of their nominal drops as Figs. 10-11), Eq. 10 in the same model, and the
+comparison of methods (convergence curves: best robust objective and best P(both) of the K
+draws against evaluations, every seed). The numbers come from the results of
+:func:`experiments.optimize.run.results`; this module only shows them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import html
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+from experiments.sweep.report_figures import DASH, cell
+from experiments.sweep.report_html import STYLE, figure_html, html_table
+from experiments.sweep.report_verdicts import design_verdict_html, strip_name
+from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS
+
+CONVERGENCE = "convergence"
+METHOD_COLOURS = {
+    "differential-evolution": "#1f77b4",
+    "cma-es": "#d62728",
+    "nelder-mead": "#2ca02c",
+    "powell": "#9467bd",
+}
+LABELS = ("optimum", "table3")
+
+
+def convergence_figure(results: dict[str, Any], path: Path) -> Path:
+    """Best robust objective R (log scale) and best P(both) over the K draws, against
+    evaluations, one line per run, coloured by method."""
+    from matplotlib import pyplot as plt
+
+    from experiments.pictures.scenes import save_figure
+
+    fig, (ax_r, ax_p) = plt.subplots(1, 2, figsize=(11, 4))
+    seen = set()
+    for run in results["runs"]:
+        curve = run["curve"]
+        if not curve:
+            continue
+        n = [c[0] for c in curve]
+        colour = METHOD_COLOURS.get(run["method"], "#444")
+        label = None if run["method"] in seen else run["method"]
+        seen.add(run["method"])
+        ax_r.step(n, [max(c[1], 1e-3) for c in curve], where="post", color=colour, label=label)
+        ax_p.step(n, [c[2] for c in curve], where="post", color=colour, label=label)
+    k = results["objective"]["trials"]
+    ax_r.set_yscale("log")
+    ax_r.set_xlabel("evaluations")
+    ax_r.set_ylabel("best R = failed trials + Gbar / (Gbar + 10 s)")
+    ax_r.set_title(f"robust objective over K = {k} fixed draws", fontsize=10)
+    ax_p.set_xlabel("evaluations")
+    ax_p.set_ylabel("P(both) of the best design, K draws")
+    ax_p.set_ylim(-0.02, 1.02)
+    ax_p.set_title("success from both entries", fontsize=10)
+    for ax in (ax_r, ax_p):
+        ax.grid(alpha=0.3)
+    if seen:
+        ax_r.legend(fontsize=8)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def strip_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[str, Path]:
+    """The strips of the nominal drops of the optimum and table3 (Figs. 10-11)."""
+    from experiments.drop.passive import passive_drop
+    from experiments.drop.pictures import drop_strip
+    from feeders.design import DesignParameters
+    from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
+    from feeders.scene_yaml import environment_from_dict
+
+    out = {}
+    for label in LABELS:
+        entry = results.get(label)
+        if entry is None:
+            continue
+        environment = environment_from_dict(config.feeder)
+        part, friction = environment.pop("part"), environment.pop("friction")
+        values = [entry["values"][n] for n in PARAMETER_NAMES]
+        try:
+            scene = build_feeder(
+                DesignParameters.from_vector(values), part, friction=friction, **environment
+            )
+        except DegenerateDesign:
+            continue
+        scene = dataclasses.replace(scene, name=label)
+        drops = [passive_drop(scene, o, step=config.step, t_max=config.t_max) for o in ORIENTATIONS]
+        name = strip_name(label)
+        out[name] = drop_strip(scene, drops, figures_dir / f"{name}.png")
+    return out
+
+
+def write_report(out: Path, config, results: dict[str, Any]) -> Path:
+    """Write ``out/report.html`` and its figures; returns the page's path."""
+    figures_dir = out / "figures"
+    figures_dir.mkdir(parents=True, exist_ok=True)
+    figures = {CONVERGENCE: convergence_figure(results, figures_dir / f"{CONVERGENCE}.png")}
+    figures.update(strip_figures(config, results, figures_dir))
+    page = out / "report.html"
+    page.write_text(html_page(results, figures))
+    return page
+
+
+def _interval(ci: Any) -> str:
+    if not isinstance(ci, (list, tuple)) or len(ci) != 2:
+        return DASH
+    return f"[{cell(ci[0], '.3f')}, {cell(ci[1], '.3f')}]"
+
+
+def design_table_rows(results: dict[str, Any]) -> list[list[str]]:
+    """Table 3's layout: per parameter its Table 2 range, table3's value and the optimum's."""
+    rows = []
+    for name in PARAMETER_NAMES:
+        low, high = TABLE2_BOUNDS[name]
+        row = [name, f"[{low:g}, {high:g}]"]
+        for label in ("table3", "optimum"):
+            entry = results.get(label)
+            row.append(cell(entry["values"][name], ".4f") if entry else DASH)
+        rows.append(row)
+    return rows
+
+
+def comparison_rows(results: dict[str, Any]) -> list[list[str]]:
+    """Per method: seeds, budget, and over its seeds the best R (median, range), best P(both)
+    of the K draws (median) and the evaluation at which the best was found (median)."""
+    by_method: dict[str, list[dict]] = {}
+    for run in results["runs"]:
+        if run["best"] is not None:
+            by_method.setdefault(run["method"], []).append(run)
+    rows = []
+    k = results["objective"]["trials"]
+    for method, runs in by_method.items():
+        values = sorted(r["best"]["value"] for r in runs)
+        ps = sorted(r["best"]["both"] / k for r in runs)
+        ats = sorted(r["best"]["at"] for r in runs)
+        rows.append(
+            [
+                method,
+                cell(len(runs)),
+                cell(runs[0]["budget"]),
+                cell(_median(values), ".4f"),
+                f"[{cell(values[0], '.4f')}, {cell(values[-1], '.4f')}]",
+                cell(_median(ps), ".3f"),
+                cell(_median(ats), ".0f"),
+            ]
+        )
+    return rows
+
+
+def _median(xs: list[float]) -> float:
+    n = len(xs)
+    return xs[n // 2] if n % 2 else 0.5 * (xs[n // 2 - 1] + xs[n // 2])
+
+
+def eq10_rows(results: dict[str, Any]) -> list[list[str]]:
+    """Per design: Eq. 10's G of the nominal drops, mean G and P(both) over the K draws and
+    over the fresh verdict draws with its interval."""
+    rows = []
+    for label in LABELS:
+        entry = results.get(label)
+        if entry is None:
+            continue
+        nominal = entry.get("nominal") or {}
+        verdict = entry.get("verdict") or {}
+        both = verdict.get("both") or {}
+        objective = entry["objective"]
+        rows.append(
+            [
+                label,
+                cell(nominal.get("G"), ".3f"),
+                cell(objective.get("mean_g"), ".3f"),
+                cell(objective.get("p_both"), ".3f"),
+                cell(verdict.get("mean_g"), ".3f"),
+                f"{cell(both.get('successes'))} / {cell(verdict.get('drops'))}",
+                _interval(both.get("interval")),
+                str(verdict.get("decision", DASH)),
+            ]
+        )
+    return rows
+
+
+EQ10_HEADERS = [
+    "design",
+    "G nominal",
+    "mean G (K draws)",
+    "P(both) (K draws)",
+    "mean G (verdict)",
+    "both (verdict)",
+    "95% CI",
+    "decision",
+]
+COMPARISON_HEADERS = [
+    "method",
+    "seeds",
+    "budget",
+    "best R (median)",
+    "range",
+    "P(both) (median)",
+    "found at (median)",
+]
+
+
+def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
+    e = html.escape
+    obj = results["objective"]
+    parts = [
+        "<!DOCTYPE html>",
+        '<html><head><meta charset="utf-8">',
+        f"<title>partfeeder optimize: {e(results['name'])}</title>",
+        f"<style>{STYLE}</style></head><body>",
+        f"<h1>Design optimisation: {e(results['name'])}</h1>",
+        f'<p class="note">Generated {e(time.strftime("%Y-%m-%d %H:%M:%S"))}; '
+        f"{cell(results['evaluations'])} designs evaluated, "
+        f"{cell(results.get('wall_time_s'), '.1f')} s wall time, "
+        f"{cell(results.get('worker_time_s'), '.1f')} s worker time.</p>",
+        "<p>The objective (lower is better): "
+        f"{e(obj['definition'])}. K = {cell(obj['trials'])} perturbation draws (seed "
+        f"{cell(obj['seed'])}), the same for every design; w = {cell(obj['weight'])}. "
+        "The verdicts below use fresh draws (another seed), so the optimum's probability is "
+        "not the one it was selected on.</p>",
+        "<h2>The optimum beside the paper's Table 3</h2>",
+        html_table(
+            ["parameter", "Table 2 range", "table3", "optimum"], design_table_rows(results), (0, 1)
+        ),
+        "<h2>Eq. 10 and the verdicts in the same model</h2>",
+        html_table(EQ10_HEADERS, eq10_rows(results), (0, 5, 7)),
+    ]
+    for label in LABELS:
+        entry = results.get(label)
+        if entry is not None and entry.get("verdict"):
+            parts += design_verdict_html(
+                {"design_id": label, "verdict": entry["verdict"]}, figures, html_table, figure_html
+            )
+    parts += [
+        "<h2>Methods on the same budget</h2>",
+        html_table(COMPARISON_HEADERS, comparison_rows(results), (0,)),
+        figure_html(figures, CONVERGENCE, "convergence of every run"),
+        "</body></html>",
+    ]
+    return "\n".join(parts)
+
+
+def summary_text(results: dict[str, Any]) -> str:
+    """The results as a few plain-text tables, for the terminal."""
+    lines = [f"optimisation {results['name']}: {results['evaluations']} designs evaluated"]
+    lines.append("")
+    lines.append(f"{'parameter':>10} {'Table 2 range':>16} {'table3':>9} {'optimum':>9}")
+    for row in design_table_rows(results):
+        lines.append(f"{row[0]:>10} {row[1]:>16} {row[2]:>9} {row[3]:>9}")
+    lines.append("")
+    lines.append(" | ".join(EQ10_HEADERS))
+    for row in eq10_rows(results):
+        lines.append(" | ".join(row))
+    lines.append("")
+    lines.append(" | ".join(COMPARISON_HEADERS))
+    for row in comparison_rows(results):
+        lines.append(" | ".join(row))
+    wall = results.get("wall_time_s")
+    if wall is not None and not math.isnan(wall):
+        lines.append(f"wall time: {wall:.1f} s")
+    return "\n".join(lines)

@@ -1,0 +1,297 @@
+"""The design optimisation (paper Section 4, Eq. 10-11), made robust: its steps in order.
+
+1. The starts (the config's presets and, with ``--from``, a sweep's best designs by their
+   verdict) are clipped into Table 2's box and evaluated.
+2. Every method of the config runs once per seed on its budget of evaluations
+   (:mod:`experiments.optimize.methods`), all on the same robust objective
+   (:mod:`experiments.optimize.objective`) and the same stored evaluations.
+3. The optimum (the lowest robust value of any run) and the paper's table3 get a verdict on
+   fresh draws (the config's ``final``: a fixed number of trials with another seed than the
+   objective's, so the optimum's probability is not the one it was selected on), and one
+   nominal drop per entry each (Eq. 10's G as the paper computes it).
+
+Every evaluation and verdict is stored as it finishes (:mod:`experiments.optimize.store`): a
+run started again in the same directory repeats none of them.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from experiments.drop.passive import eq10_objective, passive_drop
+from experiments.drop.verdict import Verdict, decide
+from experiments.optimize import store
+from experiments.optimize.config import OptimizeConfig
+from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
+from experiments.optimize.methods import METHODS, POPULATION_METHODS
+from experiments.optimize.objective import eq10_terms, trial_from_dict
+from experiments.proportions import wilson_interval
+from experiments.sweep.executors import open_pool
+from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignParameters, preset
+from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
+from feeders.scene_yaml import environment_from_dict
+
+DATABASE = "evaluations.sqlite"
+REFERENCE = "table3"
+STARTS_RUN = "starts"
+
+
+def to_unit(values: np.ndarray) -> np.ndarray:
+    """Designs (n, 12) as points of the unit cube over Table 2's box, clipped into it."""
+    low, high = DESIGN_SPACE.low, DESIGN_SPACE.high
+    return np.clip((np.asarray(values, dtype=float) - low) / (high - low), 0.0, 1.0)
+
+
+def from_unit(unit: np.ndarray) -> np.ndarray:
+    """Points of the unit cube (n, 12), clipped into it, as designs in Table 2's box."""
+    return DESIGN_SPACE.scale(np.clip(np.asarray(unit, dtype=float), 0.0, 1.0))
+
+
+def start_designs(config: OptimizeConfig, sweep_best: list[dict]) -> dict[str, list[float]]:
+    """Name -> design values of every start, in Table 2's box: the presets, then the sweep's
+    best (named ``sweep:<design_id>``)."""
+    starts = {name: preset(name).to_vector() for name in config.presets}
+    for b in sweep_best[: config.sweep_best]:
+        starts[f"sweep:{b['design_id']}"] = np.asarray(b["values"], dtype=float)
+    return {name: from_unit(to_unit(v[None, :]))[0].tolist() for name, v in starts.items()}
+
+
+def run_label(method: str, seed: int) -> str:
+    return f"{method}/seed{seed}"
+
+
+def optimise(
+    config: OptimizeConfig,
+    out: Path,
+    sweep_best: list[dict] | None = None,
+    executor: str = "local",
+    scheduler: str | None = None,
+    progress: Progress | None = None,
+) -> dict[str, Any]:
+    """Run the optimisation of ``config`` in directory ``out`` (resuming what is stored there)
+    and return its results as plain data (:func:`results`)."""
+    starts = start_designs(config, sweep_best or [])
+    if not starts:
+        raise ValueError("start: no start designs (give start.presets, or --from a sweep)")
+    db = store.connect(out / DATABASE)
+    try:
+        store.claim(db, {**config.to_dict(), "starts": starts}, config.objective_key())
+        t0 = time.perf_counter()
+        with open_pool(executor, config.workers, config.max_attempts, scheduler) as pool:
+            ev = Evaluator(db, pool, config, progress, workers=config.workers)
+            if progress:
+                progress("start", {"runs": _runs(config), "starts": len(starts)})
+            _run_methods(ev, config, starts, progress)
+            optimum = best_key(db, [label for label, _ in _runs(config)])
+            ev.batch(REFERENCE, 1, [_reference()])  # its objective, to compare (cached if a start)
+            _final_verdicts(ev, db, config, {"optimum": optimum, REFERENCE: _reference()})
+        wall = time.perf_counter() - t0
+        return results(db, config, starts, wall)
+    finally:
+        db.close()
+
+
+def _run_methods(
+    ev: Evaluator, config: OptimizeConfig, starts: dict[str, list[float]], progress: Progress | None
+) -> None:
+    """Evaluate the starts, then run every method once per seed on its budget."""
+    start_values = ev.batch(STARTS_RUN, len(starts), list(starts.values()))
+    unit_starts = to_unit(np.array(list(starts.values())))
+    best_start = unit_starts[int(np.argmin(start_values))]
+    for method in config.methods:
+        for seed in method.seeds:
+            label = run_label(method.method, seed)
+            if progress:
+                progress("run", {"run": label, "budget": method.budget})
+
+            def f(unit: np.ndarray, label: str = label, budget: int = method.budget) -> list[float]:
+                return ev.batch(label, budget, from_unit(unit).tolist())
+
+            first = unit_starts if method.method in POPULATION_METHODS else best_start
+            try:
+                METHODS[method.method](f, first, method.budget, seed, method.population)
+            except BudgetSpent:
+                pass
+
+
+def _final_verdicts(
+    ev: Evaluator, db, config: OptimizeConfig, designs: dict[str, str | list[float]]
+) -> None:
+    """The fixed-sample verdict (``final``: trials, seed) of each labelled design (a key or
+    its values), unless stored already for the same design and seed."""
+    for label, design in designs.items():
+        key = design if isinstance(design, str) else store.design_key(design)
+        stored = store.stored_verdict(db, label)
+        if stored is not None and (stored["key"], stored["seed"]) == (key, config.final_seed):
+            continue
+        done = ev.run_trials(
+            {key: store.design_of_key(key)}, config.final_seed, config.final_trials
+        )
+        store.record_verdict(db, label, key, config.final_seed, done[key].trials)
+
+
+def _reference() -> list[float]:
+    return preset(REFERENCE).to_vector().tolist()
+
+
+def _runs(config: OptimizeConfig) -> list[tuple[str, int]]:
+    return [(run_label(m.method, s), m.budget) for m in config.methods for s in m.seeds]
+
+
+def best_key(db, runs: list[str]) -> str:
+    """The design with the lowest robust value asked by any of ``runs`` (ties: the earliest
+    asked, in the order of ``runs``)."""
+    values = store.evaluations(db)
+    calls = store.calls(db)
+    best: tuple[float, int, int] | None = None
+    key = None
+    for r, run in enumerate(runs):
+        for n, k in enumerate(calls.get(run, [])):
+            rank = (values[k]["value"], r, n)
+            if best is None or rank < best:
+                best, key = rank, k
+    if key is None:
+        raise ValueError("no method evaluated any design (every budget is 0?)")
+    return key
+
+
+def _verdict(trial_data: list[dict], target: float) -> Verdict:
+    trials = tuple(trial_from_dict(t) for t in trial_data)
+    counts = [sum(t.success[k] for t in trials) for k in range(len(ORIENTATIONS))]
+    decision = decide(counts, len(trials), target) if trials else "fails"
+    return Verdict(tuple(ORIENTATIONS), trials, target, decision, 0.0)
+
+
+def _nominal(config: OptimizeConfig, values: list[float]) -> dict[str, Any]:
+    """One unperturbed drop per entry: success, T, distance to q_goal, and Eq. 10's G."""
+    environment = environment_from_dict(config.feeder)
+    part, friction = environment.pop("part"), environment.pop("friction")
+    try:
+        scene = build_feeder(
+            DesignParameters.from_vector(values), part, friction=friction, **environment
+        )
+    except DegenerateDesign as exc:
+        return {"reason": exc.reason}
+    drops = [passive_drop(scene, o, step=config.step, t_max=config.t_max) for o in ORIENTATIONS]
+    return {
+        "reason": None,
+        "G": eq10_objective(drops, config.weight),
+        "entries": {
+            d.orientation: {
+                "success": d.success,
+                "T_s": d.T,
+                "goal_error": d.goal_error,
+                "end": d.end,
+            }
+            for d in drops
+        },
+    }
+
+
+def _design_entry(
+    config: OptimizeConfig, key: str, evaluation: dict[str, Any], verdict: dict | None
+) -> dict[str, Any]:
+    values = store.design_of_key(key)
+    k = evaluation["trials"]
+    entry: dict[str, Any] = {
+        "values": dict(zip(PARAMETER_NAMES, values, strict=True)),
+        "objective": {
+            "value": evaluation["value"],
+            "both": evaluation["both"],
+            "trials": k,
+            "p_both": evaluation["both"] / k,
+            "interval": list(wilson_interval(evaluation["both"], k)),
+            "mean_g": evaluation["mean_g"],
+            "reason": evaluation["reason"],
+        },
+    }
+    if verdict is not None:
+        v = _verdict(verdict["trial_data"], config.final_target)
+        g = [eq10_terms(t, config.weight) for t in v.trials]
+        g = [x for x in g if not math.isnan(x)]
+        entry["verdict"] = {**v.to_dict(), "seed": verdict["seed"]}
+        entry["verdict"]["mean_g"] = sum(g) / len(g) if g else None
+    entry["nominal"] = _nominal(config, values)
+    return entry
+
+
+def results(
+    db, config: OptimizeConfig, starts: dict[str, list[float]], wall: float | None
+) -> dict[str, Any]:
+    """The stored optimisation as plain data: per run its curve (best value and best P(both)
+    of the K draws against evaluations), the starts, the optimum and table3 (values, objective,
+    verdict on fresh draws, nominal drops)."""
+    values = store.evaluations(db)
+    calls = store.calls(db)
+    runs = []
+    for method in config.methods:
+        for seed in method.seeds:
+            label = run_label(method.method, seed)
+            keys = calls.get(label, [])
+            curve, best = [], None
+            for n, k in enumerate(keys):
+                e = values[k]
+                if best is None or e["value"] < best[0]:
+                    best = (e["value"], e["both"], k, n)
+                curve.append([n + 1, best[0], best[1] / config.trials])
+            runs.append(
+                {
+                    "run": label,
+                    "method": method.method,
+                    "seed": seed,
+                    "budget": method.budget,
+                    "evaluations": len(keys),
+                    "best": None
+                    if best is None
+                    else {
+                        "value": best[0],
+                        "both": best[1],
+                        "values": store.design_of_key(best[2]),
+                        "at": best[3] + 1,
+                    },
+                    "curve": curve,
+                }
+            )
+    start_rows = []
+    for name, v in starts.items():
+        e = values.get(store.design_key(v))
+        if e is not None:
+            start_rows.append(
+                {
+                    "name": name,
+                    "values": v,
+                    "value": e["value"],
+                    "both": e["both"],
+                    "mean_g": e["mean_g"],
+                    "reason": e["reason"],
+                }
+            )
+    out: dict[str, Any] = {
+        "name": config.name,
+        "objective": {
+            "trials": config.trials,
+            "seed": config.seed,
+            "weight": config.weight,
+            "perturbations": config.perturbations,
+            "definition": "R = (K - S) + Gbar / (Gbar + 10 s): S of K trials succeed from "
+            "both entries, Gbar their mean Eq. 10 G; degenerate designs R = K + 1",
+        },
+        "starts": start_rows,
+        "runs": runs,
+        "evaluations": len(values),
+        "worker_time_s": sum(e["wall_time_s"] for e in values.values()),
+    }
+    if wall is not None:
+        out["wall_time_s"] = wall
+    for label in ("optimum", REFERENCE):
+        stored = store.stored_verdict(db, label)
+        if stored is None:
+            continue
+        key = stored["key"]
+        out[label] = _design_entry(config, key, values[key], stored)
+    return out

@@ -1,0 +1,235 @@
+"""The evaluations of an optimisation: one SQLite file, written by one process.
+
+Tables (one row per ...):
+
+- ``meta`` (key, value): ``config`` (the config as JSON), ``objective_key`` (the digest of
+  what decides a value: a database belongs to one), ``created``.
+- ``evaluations``: a design evaluated: ``key`` (its 12 values, exactly, as JSON), the robust
+  objective ``value`` (:mod:`experiments.optimize.objective`), ``both`` (trials that succeed
+  from both entries) of ``trials``, successes per entry, ``mean_g`` (mean Eq. 10 G), ``reason``
+  (why degenerate), every trial as JSON, and ``wall_time_s`` (worker time).
+- ``calls``: the n-th evaluation a method run asked for (``run`` is e.g.
+  ``differential-evolution/seed0``), pointing at its design's evaluation. A design asked again
+  (by this run or another) is not evaluated again: the value is a function of the design.
+- ``verdicts``: a design's fixed-sample verdict on fresh draws (``label``: ``optimum``,
+  ``table3``, ...): its seed and trials as JSON.
+
+An evaluation is stored in one transaction as it finishes: a run killed at any moment loses
+at most the evaluations in flight, and one restarted repeats none that were stored.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sqlite3
+import time
+from pathlib import Path
+from typing import Any
+
+from experiments.database_file import check_file
+from feeders.design import PARAMETER_NAMES
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS evaluations (
+    key TEXT PRIMARY KEY,
+    value REAL NOT NULL,
+    both_entries INTEGER NOT NULL,
+    trials INTEGER NOT NULL,
+    heavy_leading INTEGER NOT NULL,
+    heavy_trailing INTEGER NOT NULL,
+    mean_g REAL,
+    reason TEXT,
+    trial_data TEXT NOT NULL,
+    wall_time_s REAL NOT NULL
+);
+CREATE TABLE IF NOT EXISTS calls (
+    run TEXT NOT NULL,
+    n INTEGER NOT NULL,
+    key TEXT NOT NULL REFERENCES evaluations(key),
+    PRIMARY KEY (run, n)
+);
+CREATE TABLE IF NOT EXISTS verdicts (
+    label TEXT PRIMARY KEY,
+    key TEXT NOT NULL,
+    seed INTEGER NOT NULL,
+    trial_data TEXT NOT NULL
+);
+"""
+
+
+class StoreMismatch(ValueError):
+    """The database holds the evaluations of another objective, or another run's calls."""
+
+
+class StoreDamaged(ValueError):
+    """The file is not a sound optimisation database."""
+
+
+def _damaged(path: Path, problem: str) -> StoreDamaged:
+    return StoreDamaged(
+        f"optimisation database '{path}' {problem}; nothing was written to it: move it aside "
+        "(or delete it) and run the same command again to redo the optimisation"
+    )
+
+
+def design_key(values: list[float]) -> str:
+    """The key of a design: its 12 values as JSON (Python's float repr round-trips exactly)."""
+    return json.dumps([float(v) for v in values])
+
+
+def design_of_key(key: str) -> list[float]:
+    return [float(v) for v in json.loads(key)]
+
+
+def _content_problem(db: sqlite3.Connection) -> str | None:
+    """Rows this module never writes: a key that is not 12 finite numbers, a value that is not
+    finite and non-negative, counts out of order, trial data that is not JSON."""
+    for (key,) in db.execute("SELECT key FROM evaluations"):
+        try:
+            values = json.loads(key)
+            ok = len(values) == len(PARAMETER_NAMES) and all(
+                isinstance(v, float) and math.isfinite(v) for v in values
+            )
+        except (ValueError, TypeError):
+            ok = False
+        if not ok:
+            return "evaluations: a key is not a design's 12 values"
+    bad = db.execute(
+        """SELECT 1 FROM evaluations WHERE typeof(value) != 'real' OR NOT value >= 0
+        OR typeof(trials) != 'integer' OR trials < 1
+        OR both_entries NOT BETWEEN 0 AND min(heavy_leading, heavy_trailing)
+        OR heavy_leading NOT BETWEEN 0 AND trials OR heavy_trailing NOT BETWEEN 0 AND trials
+        OR NOT wall_time_s >= 0 LIMIT 1"""
+    ).fetchone()
+    if bad:
+        return "evaluations: a row holds a value this program never writes"
+    if db.execute("SELECT 1 FROM calls WHERE typeof(n) != 'integer' OR n < 0 LIMIT 1").fetchone():
+        return "calls: a row holds a value this program never writes"
+    try:
+        for (data,) in db.execute(
+            "SELECT trial_data FROM evaluations UNION ALL SELECT trial_data FROM verdicts"
+        ):
+            json.loads(data)
+    except (ValueError, sqlite3.OperationalError) as exc:
+        return f"trial data cannot be read ({type(exc).__name__})"
+    return None
+
+
+def check_store(path: str | Path) -> bool:
+    """Refuse (:class:`StoreDamaged`) a file that is not a sound optimisation database
+    (:func:`experiments.database_file.check_file`). Returns whether it holds our tables."""
+    return check_file(
+        path, _SCHEMA, _damaged, "optimisation database", content_problem=_content_problem
+    )
+
+
+def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
+    """Open an optimisation database (created if missing, unless ``readonly``), after
+    :func:`check_store` has found it sound."""
+    path = Path(path)
+    ours = check_store(path)
+    if readonly:
+        if not ours:
+            raise _damaged(path, "holds no evaluations")
+        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
+    else:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        db = sqlite3.connect(path, timeout=30.0)
+        db.execute("PRAGMA journal_mode=WAL")
+        db.execute("PRAGMA synchronous=NORMAL")
+        db.executescript(_SCHEMA)
+    db.row_factory = sqlite3.Row
+    return db
+
+
+def claim(db: sqlite3.Connection, config: dict[str, Any], objective_key: str) -> None:
+    """Tie the database to an objective; one of another raises :class:`StoreMismatch`."""
+    row = db.execute("SELECT value FROM meta WHERE key = 'objective_key'").fetchone()
+    if row is not None and row["value"] != objective_key:
+        raise StoreMismatch(
+            "this directory holds an optimisation of another objective (key "
+            f"{row['value']}, this config's is {objective_key}); choose another --out "
+            "or remove it"
+        )
+    with db:
+        db.execute("INSERT OR IGNORE INTO meta VALUES ('objective_key', ?)", (objective_key,))
+        db.execute("INSERT OR IGNORE INTO meta VALUES ('created', ?)", (time.ctime(),))
+        db.execute("INSERT OR REPLACE INTO meta VALUES ('config', ?)", (json.dumps(config),))
+
+
+def evaluations(db: sqlite3.Connection) -> dict[str, dict[str, Any]]:
+    """key -> the stored evaluation (:func:`experiments.optimize.objective.robust_value`'s
+    fields, with ``trial_data`` and ``wall_time_s``)."""
+    out = {}
+    for row in db.execute("SELECT * FROM evaluations"):
+        out[row["key"]] = {
+            "value": row["value"],
+            "both": row["both_entries"],
+            "trials": row["trials"],
+            "successes": [row["heavy_leading"], row["heavy_trailing"]],
+            "mean_g": row["mean_g"],
+            "reason": row["reason"],
+            "trial_data": json.loads(row["trial_data"]),
+            "wall_time_s": row["wall_time_s"],
+        }
+    return out
+
+
+def calls(db: sqlite3.Connection, run: str | None = None) -> dict[str, list[str]]:
+    """run -> the keys it asked for, in order (only ``run``'s when given)."""
+    out: dict[str, list[str]] = {}
+    query = "SELECT run, n, key FROM calls"
+    params: tuple = ()
+    if run is not None:
+        query += " WHERE run = ?"
+        params = (run,)
+    for row in db.execute(query + " ORDER BY run, n", params):
+        out.setdefault(row["run"], []).append(row["key"])
+    return out
+
+
+def record(db: sqlite3.Connection, key: str, result: dict[str, Any]) -> None:
+    """Store one design's evaluation (once: a key already stored is kept)."""
+    with db:
+        db.execute(
+            "INSERT OR IGNORE INTO evaluations VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+            (
+                key,
+                float(result["value"]),
+                int(result["both"]),
+                int(result["trials"]),
+                int(result["successes"][0]),
+                int(result["successes"][1]),
+                result["mean_g"],
+                result["reason"],
+                json.dumps(result["trial_data"]),
+                float(result["wall_time_s"]),
+            ),
+        )
+
+
+def record_call(db: sqlite3.Connection, run: str, n: int, key: str) -> None:
+    """Store that ``run`` asked for ``key`` as its ``n``-th evaluation."""
+    with db:
+        db.execute("INSERT OR IGNORE INTO calls VALUES (?, ?, ?)", (run, n, key))
+
+
+def record_verdict(
+    db: sqlite3.Connection, label: str, key: str, seed: int, trial_data: list[dict]
+) -> None:
+    """Store the fixed-sample verdict of design ``key`` under ``label``."""
+    with db:
+        db.execute(
+            "INSERT OR REPLACE INTO verdicts VALUES (?, ?, ?, ?)",
+            (label, key, seed, json.dumps(trial_data)),
+        )
+
+
+def stored_verdict(db: sqlite3.Connection, label: str) -> dict[str, Any] | None:
+    """The stored verdict under ``label``: ``key``, ``seed``, ``trial_data``; None if none."""
+    row = db.execute("SELECT * FROM verdicts WHERE label = ?", (label,)).fetchone()
+    if row is None:
+        return None
+    return {"key": row["key"], "seed": row["seed"], "trial_data": json.loads(row["trial_data"])}
