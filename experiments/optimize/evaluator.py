@@ -58,6 +58,7 @@ class Evaluator:
     stored_calls: dict[str, list[str]] = field(init=False)
     asked: dict[str, int] = field(init=False, default_factory=dict)
     best: dict[str, dict[str, Any]] = field(init=False, default_factory=dict)
+    computed: int = field(init=False, default=0)  # designs evaluated by this process
 
     def __post_init__(self) -> None:
         self.cache = store.evaluations(self.db)
@@ -148,6 +149,7 @@ class Evaluator:
             result["wall_time_s"] = p.wall
             store.record(self.db, key, result)
             self.cache[key] = result
+            self.computed += 1
 
         if new:
             self.run_trials(new, self.config.seed, self.config.trials, store_design)

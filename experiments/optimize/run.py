@@ -91,7 +91,9 @@ def optimise(
             ev.batch(REFERENCE, 1, [_reference()])  # its objective, to compare (cached if a start)
             _final_verdicts(ev, db, config, {"optimum": optimum, REFERENCE: _reference()})
         wall = time.perf_counter() - t0
-        return results(db, config, starts, wall)
+        out_results = results(db, config, starts, wall)
+        out_results["new_evaluations"] = ev.computed
+        return out_results
     finally:
         db.close()
 
@@ -223,9 +225,9 @@ def _design_entry(
 def results(
     db, config: OptimizeConfig, starts: dict[str, list[float]], wall: float | None
 ) -> dict[str, Any]:
-    """The stored optimisation as plain data: per run its curve (best value and best P(both)
-    of the K draws against evaluations), the starts, the optimum and table3 (values, objective,
-    verdict on fresh draws, nominal drops)."""
+    """The stored optimisation as plain data: per run its curve (evaluations, and of the best
+    design so far: R, P(both) over the K draws, mean G), the starts, the optimum and table3
+    (values, objective, verdict on fresh draws, nominal drops)."""
     values = store.evaluations(db)
     calls = store.calls(db)
     runs = []
@@ -237,8 +239,8 @@ def results(
             for n, k in enumerate(keys):
                 e = values[k]
                 if best is None or e["value"] < best[0]:
-                    best = (e["value"], e["both"], k, n)
-                curve.append([n + 1, best[0], best[1] / config.trials])
+                    best = (e["value"], e["both"], k, n, e["mean_g"])
+                curve.append([n + 1, best[0], best[1] / config.trials, best[4]])
             runs.append(
                 {
                     "run": label,

@@ -1,0 +1,156 @@
+"""The optimisation end to end, with the dynamic level (small budgets, K = 3 draws).
+
+Specifications of issue 14: on a small budget the optimiser improves its start and returns a
+design inside Table 2's box whose verdict (fresh draws) is at least as good as the start's;
+the same seed gives the same result whatever the pool; a killed run resumes without repeating
+or losing stored evaluations."""
+
+import json
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from experiments.optimize.config import config_from_dict
+from experiments.optimize.run import DATABASE, optimise
+from feeders.design import DESIGN_SPACE, PARAMETER_NAMES
+from tests.experiments.cli_process import ROOT
+
+SMALL = {
+    "name": "small",
+    "feeder": {"friction": 0.05, "restitution": 0.3},
+    "objective": {"trials": 3, "seed": 0},
+    "start": {"presets": ["table3"]},
+    "methods": [
+        {"method": "powell", "budget": 8, "seeds": [0]},
+        {"method": "differential-evolution", "budget": 10, "seeds": [0], "population": 5},
+    ],
+    "final": {"trials": 6, "seed": 1000},
+    "workers": 2,
+}
+
+
+def both(entry):
+    return entry["verdict"]["both"]["successes"]
+
+
+@pytest.fixture(scope="module")
+def small_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("small")
+    return out, optimise(config_from_dict(SMALL), out)
+
+
+def test_improves_its_start_inside_the_box_with_a_verdict_at_least_as_good(small_run):
+    _, results = small_run
+    start = results["starts"][0]
+    optimum = results["optimum"]
+    assert start["name"] == "table3"
+    assert optimum["objective"]["value"] < start["value"]
+    values = np.array([optimum["values"][n] for n in PARAMETER_NAMES])
+    assert np.all(values >= DESIGN_SPACE.low) and np.all(values <= DESIGN_SPACE.high)
+    # table3 is the start: its verdict is on the same fresh draws as the optimum's
+    assert both(optimum) >= both(results["table3"])
+    assert optimum["verdict"]["drops"] == 6
+
+
+def test_every_run_spends_its_budget_and_its_curve_never_worsens(small_run):
+    _, results = small_run
+    for run in results["runs"]:
+        assert run["evaluations"] == run["budget"]
+        best = [point[1] for point in run["curve"]]
+        assert best == sorted(best, reverse=True)
+
+
+def test_same_seed_same_result_with_one_worker_or_two(small_run, tmp_path):
+    _, two = small_run
+    one = optimise(config_from_dict({**SMALL, "workers": 1}), tmp_path / "one")
+    for key in ("runs", "starts"):
+        assert one[key] == two[key]
+    assert one["optimum"]["values"] == two["optimum"]["values"]
+    assert one["optimum"]["verdict"]["transitions"] == two["optimum"]["verdict"]["transitions"]
+
+
+def test_a_second_run_in_the_same_directory_evaluates_nothing_again(small_run):
+    out, first = small_run
+    again = optimise(config_from_dict(SMALL), out)
+    assert again["new_evaluations"] == 0
+    assert again["runs"] == first["runs"]
+
+
+def _stored(path):
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    try:
+        return dict(db.execute("SELECT key, value FROM evaluations").fetchall())
+    finally:
+        db.close()
+
+
+def test_a_killed_run_resumes_without_repeating_or_losing_evaluations(tmp_path):
+    config = {
+        **SMALL,
+        "methods": [
+            {"method": "differential-evolution", "budget": 30, "seeds": [0], "population": 6}
+        ],
+    }
+    path = tmp_path / "config.yaml"
+    path.write_text(json.dumps(config))  # JSON is YAML
+    out = tmp_path / "out"
+    command = [
+        sys.executable,
+        "-c",
+        "from experiments.cli import main; main()",
+        "optimize",
+        str(path),
+        "--out",
+        str(out),
+        "--quiet",
+    ]
+    process = subprocess.Popen(
+        command,
+        cwd=ROOT,
+        start_new_session=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    deadline = time.time() + 300
+    stored = {}
+    while time.time() < deadline and len(stored) < 10:
+        time.sleep(0.5)
+        if (out / DATABASE).exists():
+            try:
+                stored = _stored(out / DATABASE)
+            except sqlite3.Error:
+                stored = {}
+        assert process.poll() is None, "the run ended before it could be killed"
+    os.killpg(process.pid, signal.SIGKILL)
+    process.wait()
+    before = _stored(out / DATABASE)
+    assert len(before) >= 10
+    resumed = optimise(config_from_dict(config), out)
+    after = _stored(out / DATABASE)
+    assert {k: after[k] for k in before} == before  # nothing lost or changed
+    assert resumed["new_evaluations"] == len(after) - len(before)  # nothing repeated
+    fresh = optimise(config_from_dict(config), tmp_path / "fresh")
+    assert resumed["runs"] == fresh["runs"]
+    assert resumed["optimum"]["values"] == fresh["optimum"]["values"]
+
+
+def test_same_result_on_a_dask_cluster(small_run, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    _, local = small_run
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
+        remote = optimise(
+            config_from_dict(SMALL),
+            tmp_path / "dask",
+            executor="dask",
+            scheduler=cluster.scheduler_address,
+        )
+    assert remote["runs"] == local["runs"]
+    assert remote["optimum"]["verdict"]["transitions"] == local["optimum"]["verdict"]["transitions"]
