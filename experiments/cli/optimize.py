@@ -124,6 +124,11 @@ def run(args: argparse.Namespace) -> int:
 
         check_scheduler(args.scheduler)
     best = _sweep_best(args.sweep)
+    if not config.presets and not best:
+        raise UsageError(
+            f"{args.config}: start.presets is empty and no --from SWEEP_DIR was given: "
+            "nothing to start from"
+        )
     out = out_dir(args.out or DEFAULT_OUT / config.name, inputs=[Path(args.config)])
     assert out is not None
     from experiments.optimize.report import summary_text, write_report

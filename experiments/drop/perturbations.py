@@ -16,6 +16,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from feeders.design import PARAMETER_NAMES, PHYSICAL_BOUNDS, DesignParameters
+from feeders.fields import shown
 
 LIMITS = {
     "position": (0.0, 0.5),
@@ -47,8 +48,17 @@ class Perturbations:
     def __post_init__(self) -> None:
         for name, (low, high) in LIMITS.items():
             value = getattr(self, name)
-            if not (isinstance(value, int | float) and math.isfinite(value)):
+            if isinstance(value, bool) or not isinstance(value, int | float):
                 raise ValueError(f"perturbations.{name} = {value!r} must be a number")
+            try:
+                finite = math.isfinite(value)
+            except OverflowError:  # an int beyond 1.8e308
+                finite = False
+            if not finite:
+                raise ValueError(
+                    f"perturbations.{name} = {shown(value)} must be a finite number in "
+                    f"[{low:g}, {high:g}]"
+                )
             if not low <= value <= high:
                 raise ValueError(
                     f"perturbations.{name} = {value!r} is outside the allowed range "

@@ -774,6 +774,99 @@ DB_DAMAGE = (
 )
 
 
+# A valid optimisation config that finishes in seconds: one Powell evaluation of one trial.
+BASE_OPTIMIZE: dict[str, Any] = {
+    "name": "corpus-optimize",
+    "feeder": {"friction": 0.05, "restitution": 0.3},
+    "objective": {"trials": 1, "seed": 0, "weight": 5.0, "step": 0.001, "t_max": 10.0},
+    "perturbations": {
+        "position": 0.05,
+        "yaw": 0.05,
+        "speed": 0.05,
+        "friction": 0.2,
+        "tolerance": 0.01,
+    },
+    "start": {"presets": ["table3"], "sweep_best": 6},
+    "methods": [{"method": "powell", "budget": 1, "seeds": [0]}],
+    "final": {"trials": 1, "seed": 1000, "target": 0.9},
+    "workers": 1,
+    "max_attempts": 1,
+}
+
+# (path, low, high, integer): the numeric leaves of an optimisation config and their ranges.
+OPTIMIZE_LEAVES: tuple[tuple[str, float, float, bool], ...] = (
+    ("objective.trials", 1, 10_000, True),
+    ("objective.seed", 0, 2**31 - 1, True),
+    ("objective.weight", 0.0, 1e6, False),
+    ("objective.step", 1e-6, 0.1, False),
+    ("objective.t_max", 1e-3, 3600.0, False),
+    ("perturbations.position", 0.0, 0.5, False),
+    ("perturbations.yaw", 0.0, 0.5, False),
+    ("perturbations.speed", 0.0, 1.0, False),
+    ("perturbations.friction", 0.0, 0.9, False),
+    ("perturbations.tolerance", 0.0, 0.1, False),
+    ("start.sweep_best", 0, 1000, True),
+    ("methods.0.budget", 1, 1_000_000, True),
+    ("methods.0.seeds.0", 0, 2**31 - 1, True),
+    ("final.trials", 1, 10_000, True),
+    ("final.seed", 0, 2**31 - 1, True),
+    ("final.target", 0.0, 1.0, False),
+    ("workers", 1, 1024, True),
+    ("max_attempts", 1, 100, True),
+)
+
+
+def _optimize_argv(config: str = "opt.yaml", *extra: str) -> tuple[str, ...]:
+    return ("optimize", config, "--out", "{dir}/opt", "--no-report", "--quiet", *extra)
+
+
+def optimize_cases() -> Iterator[Case]:
+    """Optimisation configs with one field wrong (each numeric leaf out of range or of another
+    type, the methods and starts malformed, keys unknown), and bad ``--from`` directories."""
+    for path, low, high, integer in OPTIMIZE_LEAVES:
+        for label, value in (*BAD_NUMBERS, *_out_of_range(low, high, integer)):
+            doc = with_value(BASE_OPTIMIZE, path, value)
+            yield Case("optimize", f"{path}={label}", _optimize_argv(), (("opt.yaml", dump(doc)),))
+    structural: list[tuple[str, Any]] = [
+        ("no-methods", with_value(BASE_OPTIMIZE, "methods", DELETE)),
+        ("methods-empty", with_value(BASE_OPTIMIZE, "methods", [])),
+        ("methods-mapping", with_value(BASE_OPTIMIZE, "methods", {"method": "powell"})),
+        ("method-unknown", with_value(BASE_OPTIMIZE, "methods.0.method", "fmincon")),
+        ("method-number", with_value(BASE_OPTIMIZE, "methods.0.method", 3)),
+        ("method-missing", with_value(BASE_OPTIMIZE, "methods.0.method", DELETE)),
+        ("budget-missing", with_value(BASE_OPTIMIZE, "methods.0.budget", DELETE)),
+        ("population-small", with_value(BASE_OPTIMIZE, "methods.0.population", 4)),
+        ("population-text", with_value(BASE_OPTIMIZE, "methods.0.population", "big")),
+        ("seeds-empty", with_value(BASE_OPTIMIZE, "methods.0.seeds", [])),
+        ("seeds-string", with_value(BASE_OPTIMIZE, "methods.0.seeds", "0")),
+        ("seeds-twice", with_value(BASE_OPTIMIZE, "methods.0.seeds", [1, 1])),
+        ("method-twice", with_value(BASE_OPTIMIZE, "methods", BASE_OPTIMIZE["methods"] * 2)),
+        ("presets-unknown", with_value(BASE_OPTIMIZE, "start.presets", ["fig99"])),
+        ("presets-string", with_value(BASE_OPTIMIZE, "start.presets", "table3")),
+        ("presets-none", with_value(BASE_OPTIMIZE, "start.presets", [])),
+        ("method-unknown-key", with_value(BASE_OPTIMIZE, "methods.0.speed", 1)),
+        ("objective-unknown-key", with_value(BASE_OPTIMIZE, "objective.mu", 0.1)),
+        ("final-unknown-key", with_value(BASE_OPTIMIZE, "final.drops", 10)),
+        ("top-unknown-key", with_value(BASE_OPTIMIZE, "ladder", [])),
+        ("feeder-unknown-key", with_value(BASE_OPTIMIZE, "feeder.colour", "red")),
+        ("feeder-friction", with_value(BASE_OPTIMIZE, "feeder.friction", -1)),
+        ("name-slash", with_value(BASE_OPTIMIZE, "name", "../../escape")),
+        ("not-a-mapping", [1, 2, 3]),
+    ]
+    for name, doc in structural:
+        yield Case("optimize", name, _optimize_argv(), (("opt.yaml", dump(doc)),))
+    cfg = (("opt.yaml", dump(BASE_OPTIMIZE)),)
+    for name, extra in (
+        ("from-missing", ("--from", "{dir}/nowhere")),
+        ("from-file", ("--from", "opt.yaml")),
+        ("from-empty-dir", ("--from", "{dir}")),
+        ("workers-0", ("--workers", "0")),
+        ("scheduler-without-dask", ("--scheduler", "tcp://127.0.0.1:1")),
+        ("dask-without-scheduler", ("--executor", "dask")),
+    ):
+        yield Case("optimize", name, _optimize_argv("opt.yaml", *extra), cfg)
+
+
 def database_cases() -> Iterator[Case]:
     """A results database (a real sweep's) damaged in one way, read by ``report`` and by a
     ``run`` that would resume it. The database must be left as it was."""
@@ -824,6 +917,13 @@ def control_cases() -> Iterator[Case]:
     yield Case(
         "controls", "run-on-empty-database", _run_argv(), cfg, setup="db:empty-file", valid=True
     )
+    yield Case(
+        "controls",
+        "optimize",
+        _optimize_argv(),
+        (("opt.yaml", dump(BASE_OPTIMIZE)),),
+        valid=True,
+    )
 
 
 FAMILIES: dict[str, Callable[[], Iterator[Case]]] = {
@@ -836,6 +936,7 @@ FAMILIES: dict[str, Callable[[], Iterator[Case]]] = {
     "scheduler": scheduler_cases,
     "database": database_cases,
     "lock": lock_cases,
+    "optimize": optimize_cases,
     "controls": control_cases,
 }
 

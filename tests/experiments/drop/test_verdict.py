@@ -145,3 +145,11 @@ def test_same_seed_same_verdict_in_this_process_and_a_worker():
         there = pool.submit(_small_verdict, 5).result()
     assert there == here
     assert not math.isnan(here["both"]["p"])
+
+
+@pytest.mark.parametrize("value", [10**400, -(10**400), True, False, "0.1", None, float("nan")])
+def test_a_perturbation_that_is_not_a_finite_number_is_refused_by_name(value):
+    # found by the malformed-input corpus (optimize family): 10**400 raised OverflowError, a
+    # bool was taken for 1 or 0
+    with pytest.raises(ValueError, match=r"perturbations\.yaw"):
+        Perturbations(yaw=value)
