@@ -261,16 +261,16 @@ def results(
             )
     start_rows = []
     for name, v in starts.items():
-        e = values.get(store.design_key(v))
-        if e is not None:
+        stored = values.get(store.design_key(v))
+        if stored is not None:
             start_rows.append(
                 {
                     "name": name,
                     "values": v,
-                    "value": e["value"],
-                    "both": e["both"],
-                    "mean_g": e["mean_g"],
-                    "reason": e["reason"],
+                    "value": stored["value"],
+                    "both": stored["both"],
+                    "mean_g": stored["mean_g"],
+                    "reason": stored["reason"],
                 }
             )
     out: dict[str, Any] = {
