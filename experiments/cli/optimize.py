@@ -82,7 +82,7 @@ class _Bar:
             self.bar.close()
 
 
-def _sweep_best(sweep: Path | None) -> list[dict]:
+def sweep_best_designs(sweep: Path | None) -> list[dict]:
     """The best designs of a sweep directory, by their passive verdict (its summary)."""
     if sweep is None:
         return []
@@ -123,7 +123,7 @@ def run(args: argparse.Namespace) -> int:
         from experiments.sweep.executors import check_scheduler
 
         check_scheduler(args.scheduler)
-    best = _sweep_best(args.sweep)
+    best = sweep_best_designs(args.sweep)
     if not config.presets and not best:
         raise UsageError(
             f"{args.config}: start.presets is empty and no --from SWEEP_DIR was given: "

@@ -64,3 +64,36 @@ def crash_on_one_design(job: dict) -> dict:
     if job["design_id"] == CRASHING_DESIGN:
         os.kill(os.getpid(), signal.SIGKILL)
     return evaluate_design(job)
+
+
+def fake_result(design_id: int, level: str, status: str, wall: float, verdict=None) -> dict:
+    """A hand-made evaluation as a worker returns it (the leading entry's flag only)."""
+    result = {
+        "design_id": design_id,
+        "level": level,
+        "status": status,
+        "reason": None,
+        "orientations": {"heavy_leading": status == "feasible", "heavy_trailing": None},
+        "runs": [],
+        "logs": {},
+        "worker": "test",
+        "wall_time_s": wall,
+    }
+    if verdict is not None:
+        result["verdict"], result["verdict_seed"] = verdict, 1
+    return result
+
+
+def fake_verdict(decision: str, k: int, n: int, exit_time: float | None) -> dict:
+    """A hand-made verdict (``Verdict.to_dict`` shape): k of n trials succeed from both."""
+    per = {"successes": k, "p": k / n, "interval": [0.0, 1.0], "mean_exit_time_s": exit_time}
+    return {
+        "decision": decision,
+        "works": decision == "works",
+        "target": 0.9,
+        "drops": n,
+        "orientations": {"heavy_leading": per, "heavy_trailing": per},
+        "both": {"successes": k, "p": k / n, "interval": [k / n - 0.1, 1.0]},
+        "transitions": {},
+        "wall_time_s": 0.1,
+    }

@@ -10,7 +10,7 @@ import sqlite3
 from pathlib import Path
 
 import pytest
-from sweep_fixtures import TINY
+from sweep_fixtures import TINY, fake_result, fake_verdict
 
 from experiments.drop.perturbations import Perturbations
 from experiments.drop.verdict import VerdictSettings, design_verdict
@@ -143,37 +143,6 @@ def _values(path: Path, design_id: int) -> list[float]:
     return [float(v) for v in row[2:]]
 
 
-def _fake_result(design_id: int, level: str, status: str, wall: float, verdict=None) -> dict:
-    result = {
-        "design_id": design_id,
-        "level": level,
-        "status": status,
-        "reason": None,
-        "orientations": {"heavy_leading": status == "feasible", "heavy_trailing": None},
-        "runs": [],
-        "logs": {},
-        "worker": "test",
-        "wall_time_s": wall,
-    }
-    if verdict is not None:
-        result["verdict"], result["verdict_seed"] = verdict, 1
-    return result
-
-
-def _fake_verdict(decision: str, k: int, n: int, exit_time: float) -> dict:
-    per = {"successes": k, "p": k / n, "interval": [0.0, 1.0], "mean_exit_time_s": exit_time}
-    return {
-        "decision": decision,
-        "works": decision == "works",
-        "target": 0.9,
-        "drops": n,
-        "orientations": {"heavy_leading": per, "heavy_trailing": per},
-        "both": {"successes": k, "p": k / n, "interval": [k / n - 0.1, 1.0]},
-        "transitions": {},
-        "wall_time_s": 0.1,
-    }
-
-
 def test_pipelines_replay_the_holdout_by_hand(tmp_path: Path) -> None:
     """Four holdout designs, stored by hand (geometric then passive; times in s):
     design 0: geometric feasible 1.0, passive works 0.5 (k=40 of 40, exit 2.0 s)
@@ -198,14 +167,14 @@ def test_pipelines_replay_the_holdout_by_hand(tmp_path: Path) -> None:
         points = halton_points(4, 1)
         results_db.add_designs(db, ((i, True, list(points[i])) for i in range(4)))
         plan = [
-            (0, "feasible", "feasible", _fake_verdict("works", 40, 40, 2.0), 0.5),
-            (1, "infeasible", "feasible", _fake_verdict("works", 38, 40, 1.0), 0.5),
-            (2, "infeasible", "infeasible", _fake_verdict("fails", 0, 10, None), 0.1),
-            (3, "feasible", "infeasible", _fake_verdict("fails", 1, 10, None), 0.1),
+            (0, "feasible", "feasible", fake_verdict("works", 40, 40, 2.0), 0.5),
+            (1, "infeasible", "feasible", fake_verdict("works", 38, 40, 1.0), 0.5),
+            (2, "infeasible", "infeasible", fake_verdict("fails", 0, 10, None), 0.1),
+            (3, "feasible", "infeasible", fake_verdict("fails", 1, 10, None), 0.1),
         ]
         for d, geometric, passive, verdict, wall in plan:
-            results_db.record(db, _fake_result(d, "geometric", geometric, 1.0), 0, 1)
-            results_db.record(db, _fake_result(d, "passive", passive, wall, verdict), 1, 1)
+            results_db.record(db, fake_result(d, "geometric", geometric, 1.0), 0, 1)
+            results_db.record(db, fake_result(d, "passive", passive, wall, verdict), 1, 1)
     finally:
         db.close()
     summary = summarise(path)
