@@ -18,7 +18,7 @@ and its allowed range. Example (``experiments/configs/optimize.yaml``)::
       sweep_best: 6       # with --from SWEEP_DIR: that sweep's best designs by their verdict
     methods:              # each run on the same budget of evaluations, once per seed
       - {method: differential-evolution, budget: 600, seeds: [0], population: 20}
-      - {method: nelder-mead, budget: 600, seeds: [0]}
+      - {method: cma-es, budget: 200, seeds: [0], start: best}   # refines the best so far
     final: {trials: 100, seed: 1000, target: 0.9}   # the optimum's verdict, fresh draws
     workers: 2
     max_attempts: 2
@@ -51,6 +51,7 @@ from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
 MAX_BUDGET = 1_000_000
 MAX_TRIALS = 10_000
+METHOD_STARTS = ("starts", "best")
 
 
 class OptimizeConfigError(FieldError):
@@ -60,12 +61,15 @@ class OptimizeConfigError(FieldError):
 @dataclass(frozen=True)
 class Method:
     """One optimisation method, run once per seed on ``budget`` evaluations; ``population``
-    for the population methods (differential evolution, CMA-ES; None: the method's own)."""
+    for the population methods (differential evolution, CMA-ES; None: the method's own);
+    ``start``: from the config's starts (``starts``), or from the best design the methods
+    before it in the config found (``best``: a second stage that refines the first's)."""
 
     method: str
     budget: int
     seeds: tuple[int, ...] = (0,)
     population: int | None = None
+    start: str = "starts"
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {
@@ -75,6 +79,8 @@ class Method:
         }
         if self.population is not None:
             out["population"] = self.population
+        if self.start != "starts":
+            out["start"] = self.start
         return out
 
 
@@ -132,7 +138,7 @@ class OptimizeConfig:
 
 
 def _method(spec: Any, field_name: str) -> Method:
-    spec = mapping_field(spec, field_name, {"method", "budget", "seeds", "population"})
+    spec = mapping_field(spec, field_name, {"method", "budget", "seeds", "population", "start"})
     name = spec.get("method")
     if name not in OPTIMIZER_NAMES:
         raise OptimizeConfigError(
@@ -154,7 +160,12 @@ def _method(spec: Any, field_name: str) -> Method:
     population = None
     if spec.get("population") is not None:
         population = integer_field(spec["population"], f"{field_name}.population", 5, 10_000)
-    return Method(name, budget, seeds, population)
+    start = spec.get("start", "starts")
+    if start not in METHOD_STARTS:
+        raise OptimizeConfigError(
+            f"{field_name}.start = {shown(repr(start))}; allowed: {', '.join(METHOD_STARTS)}"
+        )
+    return Method(name, budget, seeds, population, start)
 
 
 def config_from_dict(data: Any, name: str = "optimize") -> OptimizeConfig:

@@ -105,7 +105,12 @@ def _run_methods(
     start_values = ev.batch(STARTS_RUN, len(starts), list(starts.values()))
     unit_starts = to_unit(np.array(list(starts.values())))
     best_start = unit_starts[int(np.argmin(start_values))]
+    done = [STARTS_RUN]
     for method in config.methods:
+        first_points = unit_starts
+        if method.start == "best":  # the best design of the methods before this one
+            best = to_unit(np.array([store.design_of_key(best_key(ev.db, done))]))
+            first_points = np.vstack([best, unit_starts])
         for seed in method.seeds:
             label = run_label(method.method, seed)
             if progress:
@@ -114,11 +119,15 @@ def _run_methods(
             def f(unit: np.ndarray, label: str = label, budget: int = method.budget) -> list[float]:
                 return ev.batch(label, budget, from_unit(unit).tolist())
 
-            first = unit_starts if method.method in POPULATION_METHODS else best_start
+            if method.method in POPULATION_METHODS:
+                first = first_points
+            else:
+                first = first_points[0] if method.start == "best" else best_start
             try:
                 METHODS[method.method](f, first, method.budget, seed, method.population)
             except BudgetSpent:
                 pass
+        done += [run_label(method.method, seed) for seed in method.seeds]
 
 
 def _final_verdicts(

@@ -15,11 +15,12 @@ import time
 
 import numpy as np
 import pytest
+from cli_process import ROOT
 
+from experiments.optimize import store
 from experiments.optimize.config import config_from_dict
-from experiments.optimize.run import DATABASE, optimise
+from experiments.optimize.run import DATABASE, best_key, optimise
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES
-from tests.experiments.cli_process import ROOT
 
 SMALL = {
     "name": "small",
@@ -29,6 +30,7 @@ SMALL = {
     "methods": [
         {"method": "powell", "budget": 8, "seeds": [0]},
         {"method": "differential-evolution", "budget": 10, "seeds": [0], "population": 5},
+        {"method": "nelder-mead", "budget": 4, "seeds": [0], "start": "best"},
     ],
     "final": {"trials": 6, "seed": 1000},
     "workers": 2,
@@ -64,6 +66,16 @@ def test_every_run_spends_its_budget_and_its_curve_never_worsens(small_run):
         assert run["evaluations"] == run["budget"]
         best = [point[1] for point in run["curve"]]
         assert best == sorted(best, reverse=True)
+
+
+def test_a_second_stage_starts_from_the_best_design_of_the_first(small_run):
+    out, _ = small_run
+    db = store.connect(out / DATABASE, readonly=True)
+    try:
+        first_stage = best_key(db, ["starts", "powell/seed0", "differential-evolution/seed0"])
+        assert store.calls(db, "nelder-mead/seed0")["nelder-mead/seed0"][0] == first_stage
+    finally:
+        db.close()
 
 
 def test_same_seed_same_result_with_one_worker_or_two(small_run, tmp_path):

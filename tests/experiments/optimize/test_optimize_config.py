@@ -31,6 +31,10 @@ def test_the_shipped_configs_load():
         (with_(methods=[{"method": "powell", "budget": 5, "population": 2}]), ["population"]),
         (with_(methods=[]), ["methods"]),
         (
+            with_(methods=[{"method": "powell", "budget": 5, "start": "anywhere"}]),
+            ["start", "best"],
+        ),
+        (
             with_(methods=[{"method": "powell", "budget": 5}, {"method": "powell", "budget": 9}]),
             ["twice"],
         ),
