@@ -19,7 +19,11 @@ and its allowed range. Example (``experiments/configs/optimize.yaml``)::
     methods:              # each run on the same budget of evaluations, once per seed
       - {method: differential-evolution, budget: 600, seeds: [0], population: 20}
       - {method: cma-es, budget: 200, seeds: [0], start: best}   # refines the best so far
-    final: {trials: 100, seed: 1000, target: 0.9}   # the optimum's verdict, fresh draws
+    final:                # fresh draws: the best `candidates` by R are validated on
+      trials: 150         # `trials` trials (seed), the best of them is the optimum, whose
+      seed: 1000          # reported verdict uses other draws again (seed + 1)
+      target: 0.9
+      candidates: 4
     workers: 2
     max_attempts: 2
 
@@ -99,9 +103,10 @@ class OptimizeConfig:
     perturbations: dict[str, float] = field(default_factory=lambda: Perturbations().to_dict())
     presets: tuple[str, ...] = ("table3",)
     sweep_best: int = 6
-    final_trials: int = 100
+    final_trials: int = 150
     final_seed: int = 1000
     final_target: float = 0.9
+    final_candidates: int = 4
     workers: int = 2
     max_attempts: int = 2
 
@@ -124,6 +129,7 @@ class OptimizeConfig:
                 "trials": self.final_trials,
                 "seed": self.final_seed,
                 "target": self.final_target,
+                "candidates": self.final_candidates,
             },
             "workers": self.workers,
             "max_attempts": self.max_attempts,
@@ -222,7 +228,9 @@ def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
     names = [m.method for m in methods]
     if len(set(names)) != len(names):
         raise OptimizeConfigError(f"methods: {names} has a method twice (give it more seeds)")
-    final = mapping_field(data.get("final", {}) or {}, "final", {"trials", "seed", "target"})
+    final = mapping_field(
+        data.get("final", {}) or {}, "final", {"trials", "seed", "target", "candidates"}
+    )
     return OptimizeConfig(
         name=name_field(data.get("name", name)),
         methods=methods,
@@ -235,9 +243,10 @@ def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
         perturbations=perturbations.to_dict(),
         presets=tuple(presets),
         sweep_best=integer_field(start.get("sweep_best", 6), "start.sweep_best", 0, 1000),
-        final_trials=integer_field(final.get("trials", 100), "final.trials", 1, MAX_TRIALS),
+        final_trials=integer_field(final.get("trials", 150), "final.trials", 1, MAX_TRIALS),
         final_seed=integer_field(final.get("seed", 1000), "final.seed", 0, 2**31 - 1),
         final_target=number_field(final.get("target", 0.9), "final.target", 0.0, 1.0),
+        final_candidates=integer_field(final.get("candidates", 4), "final.candidates", 1, 100),
         workers=integer_field(data.get("workers", 2), "workers", 1, 1024),
         max_attempts=integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100),
     )

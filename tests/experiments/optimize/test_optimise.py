@@ -60,6 +60,19 @@ def test_improves_its_start_inside_the_box_with_a_verdict_at_least_as_good(small
     assert optimum["verdict"]["drops"] == 6
 
 
+def test_the_optimum_is_the_validated_candidate_with_the_best_fresh_verdict(small_run):
+    _, results = small_run
+    candidates = results["candidates"]
+    assert len(candidates) == 4
+    assert [c["value"] for c in candidates] == sorted(c["value"] for c in candidates)
+    chosen = [c for c in candidates if c["chosen"]]
+    assert len(chosen) == 1
+    best_bound = max(c["interval"][0] for c in candidates)
+    assert chosen[0]["interval"][0] == best_bound
+    # its reported verdict is on other draws than the ones it was chosen on
+    assert results["optimum"]["verdict"]["seed"] == SMALL["final"]["seed"] + 1
+
+
 def test_every_run_spends_its_budget_and_its_curve_never_worsens(small_run):
     _, results = small_run
     for run in results["runs"]:
