@@ -92,7 +92,7 @@ def optimise(
                 progress("start", {"runs": _runs(config), "starts": len(starts)})
             _run_methods(ev, config, starts, progress)
             ev.batch(REFERENCE, 1, [_reference()])  # its objective, to compare (cached if a start)
-            optimum = _validate(ev, config, [label for label, _ in _runs(config)])
+            optimum = _validate(ev, config, _runs(config))
             _verdicts(
                 ev, config, {"optimum": optimum, REFERENCE: store.design_key(_reference())}, 1
             )
@@ -111,7 +111,7 @@ def _run_methods(
     start_values = ev.batch(STARTS_RUN, len(starts), list(starts.values()))
     unit_starts = to_unit(np.array(list(starts.values())))
     best_start = unit_starts[int(np.argmin(start_values))]
-    done = [STARTS_RUN]
+    done = [(STARTS_RUN, len(starts))]
     for method in config.methods:
         first_points = unit_starts
         if method.start == "best":  # the best design of the methods before this one
@@ -133,7 +133,7 @@ def _run_methods(
                 METHODS[method.method](f, first, method.budget, seed, method.population)
             except BudgetSpent:
                 pass
-        done += [run_label(method.method, seed) for seed in method.seeds]
+        done += [(run_label(method.method, seed), method.budget) for seed in method.seeds]
 
 
 def _verdicts(ev: Evaluator, config: OptimizeConfig, designs: dict[str, str], offset: int) -> None:
@@ -150,7 +150,7 @@ def _verdicts(ev: Evaluator, config: OptimizeConfig, designs: dict[str, str], of
         store.record_verdict(ev.db, label, key, seed, done.trials)
 
 
-def _validate(ev: Evaluator, config: OptimizeConfig, runs: list[str]) -> str:
+def _validate(ev: Evaluator, config: OptimizeConfig, runs: list[tuple[str, int]]) -> str:
     """The optimum: of the ``final.candidates`` designs with the lowest R (selected on the K
     draws, so their K-draw probabilities flatter them), the one whose verdict on fresh draws
     (seed ``final.seed``) has the highest lower bound of P(both), then the lowest mean G. Its
@@ -185,21 +185,22 @@ def _runs(config: OptimizeConfig) -> list[tuple[str, int]]:
     return [(run_label(m.method, s), m.budget) for m in config.methods for s in m.seeds]
 
 
-def ranked_keys(db, runs: list[str], count: int) -> list[str]:
-    """The ``count`` distinct designs with the lowest robust value asked by any of ``runs``,
-    best first (ties: the earliest asked, in the order of ``runs``)."""
+def ranked_keys(db, runs: list[tuple[str, int]], count: int) -> list[str]:
+    """The ``count`` distinct designs with the lowest robust value asked by any of ``runs``
+    (label, budget: a run's calls past its budget, stored by an earlier config with a larger
+    one, are not its), best first (ties: the earliest asked, in the order of ``runs``)."""
     values = store.evaluations(db)
     calls = store.calls(db)
     first: dict[str, tuple[float, int, int]] = {}
-    for r, run in enumerate(runs):
-        for n, k in enumerate(calls.get(run, [])):
+    for r, (run, budget) in enumerate(runs):
+        for n, k in enumerate(calls.get(run, [])[:budget]):
             first.setdefault(k, (values[k]["value"], r, n))
     if not first:
         raise ValueError("no method evaluated any design (every budget is 0?)")
     return sorted(first, key=first.__getitem__)[:count]
 
 
-def best_key(db, runs: list[str]) -> str:
+def best_key(db, runs: list[tuple[str, int]]) -> str:
     """The design with the lowest robust value asked by any of ``runs``."""
     return ranked_keys(db, runs, 1)[0]
 
@@ -274,7 +275,7 @@ def results(
     for method in config.methods:
         for seed in method.seeds:
             label = run_label(method.method, seed)
-            keys = calls.get(label, [])
+            keys = calls.get(label, [])[: method.budget]
             curve, best = [], None
             for n, k in enumerate(keys):
                 e = values[k]

@@ -85,10 +85,22 @@ def test_a_second_stage_starts_from_the_best_design_of_the_first(small_run):
     out, _ = small_run
     db = store.connect(out / DATABASE, readonly=True)
     try:
-        first_stage = best_key(db, ["starts", "powell/seed0", "differential-evolution/seed0"])
+        first_stage = best_key(
+            db, [("starts", 1), ("powell/seed0", 8), ("differential-evolution/seed0", 10)]
+        )
         assert store.calls(db, "nelder-mead/seed0")["nelder-mead/seed0"][0] == first_stage
     finally:
         db.close()
+
+
+def test_a_smaller_budget_in_the_same_directory_sees_only_its_own_calls(small_run, tmp_path):
+    out, first = small_run
+    smaller = {**SMALL, "methods": [{**SMALL["methods"][0], "budget": 3}]}
+    again = optimise(config_from_dict(smaller), out)
+    assert again["new_evaluations"] == 0
+    run = again["runs"][0]
+    assert run["evaluations"] == 3 and len(run["curve"]) == 3
+    assert run["curve"] == first["runs"][0]["curve"][:3]
 
 
 def test_same_seed_same_result_with_one_worker_or_two(small_run, tmp_path):
