@@ -62,7 +62,10 @@ def start_designs(config: OptimizeConfig, sweep_best: list[dict]) -> dict[str, l
     starts = {name: preset(name).to_vector() for name in config.presets}
     for b in sweep_best[: config.sweep_best]:
         starts[f"sweep:{b['design_id']}"] = np.asarray(b["values"], dtype=float)
-    return {name: from_unit(to_unit(v[None, :]))[0].tolist() for name, v in starts.items()}
+    # clipped in design space, not mapped through the unit cube: a design inside the box is
+    # kept to the last bit (contact is chaotic: 1e-16 changes a drop)
+    low, high = DESIGN_SPACE.low, DESIGN_SPACE.high
+    return {name: np.clip(v, low, high).tolist() for name, v in starts.items()}
 
 
 def run_label(method: str, seed: int) -> str:
