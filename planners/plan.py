@@ -64,6 +64,7 @@ class PlanResult:
     fine_path: np.ndarray = field(repr=False)
     tree_vertices: np.ndarray = field(repr=False)
     tree_edges: np.ndarray = field(repr=False)
+    propagations: int | None = None  # made by the planner (counted with a propagation budget)
 
     @property
     def path_length(self) -> float:
@@ -192,14 +193,26 @@ def plan(
     seed: int = 1,
     settings: PlannerSettings | None = None,
     level_options: dict | None = None,
+    propagations: int | None = None,
 ) -> PlanResult:
     """Plan from the scene's start ``orientation`` into its goal region.
 
     ``seed`` seeds OMPL's generator (process-wide; OMPL 2 restarts it on every seeding) and the
-    goal sampler, so the same seed gives the same tree and path.
+    goal sampler, so the same seed gives the same tree and path. ``propagations``: also stop
+    once the planner has made that many propagations (a machine-independent budget, as the
+    sweep's; ``time_limit`` stays as a cap): the same seed and budget then give the same
+    result on any machine and under any load.
     """
     settings = settings or PlannerSettings()
-    problem = control_problem(scene, level_name, orientation, seed, settings, level_options)
+    problem = control_problem(
+        scene,
+        level_name,
+        orientation,
+        seed,
+        settings,
+        level_options,
+        count=propagations is not None,
+    )
     ss, si, level, goal, read = problem.ss, problem.si, problem.level, problem.goal, problem.read
     ss.setPlanner(make_planner(planner_name, si))
     ss.setup()
@@ -209,7 +222,19 @@ def plan(
     level.is_valid(level.state_of_pose(start_pose))
     level.propagate(level.state_of_pose(start_pose), np.zeros(level.control_dim), settings.step)
     t0 = time.perf_counter()
-    ss.solve(float(time_limit))
+    before = 0
+    if propagations is None:
+        ss.solve(float(time_limit))
+    else:
+        counts = problem.counts
+        assert counts is not None
+        before = counts[1]
+        stop_at = before + int(propagations)
+        ptc = ob.plannerOrTerminationCondition(
+            ob.timedPlannerTerminationCondition(float(time_limit)),
+            ob.PlannerTerminationCondition(lambda: counts[1] >= stop_at),
+        )
+        ss.solve(ptc)
     elapsed = time.perf_counter() - t0
     solved = bool(ss.haveExactSolutionPath())
 
@@ -252,4 +277,5 @@ def plan(
         fine_path=fine_path(level, path, controls, durations, settings.step),
         tree_vertices=vertices,
         tree_edges=np.array(edges, dtype=np.int64).reshape(-1, 2),
+        propagations=None if problem.counts is None else problem.counts[1] - before,
     )

@@ -61,18 +61,23 @@ def _revalidate(scene: Scene, result: PlanResult) -> None:
 
 @pytest.mark.parametrize("orientation", ORIENTATIONS)
 @pytest.mark.parametrize(
-    "planner,seeds,budget,needed",
-    [("rrt", 20, 5.0, 19), ("kpiece", 5, 10.0, 4)],
+    "planner,seeds,propagations,needed",
+    [("rrt", 20, 30_000, 19), ("kpiece", 5, 20_000, 4)],
 )
 def test_planner_solves_table3_and_every_path_revalidates(
-    planner: str, seeds: int, budget: float, needed: int, orientation: str
+    planner: str, seeds: int, propagations: int, needed: int, orientation: str
 ) -> None:
-    """RRT: 20 seeded runs of 5 s (it typically needs 0.1-0.7 s), at least 19 (95%) solved.
-    KPIECE1 with the pose projection (x, y, yaw): 5 runs of 10 s, at least 4 solved."""
+    """RRT: 20 seeded runs of 30,000 propagations each, at least 19 (95%) solved (measured: the
+    hardest seed, heavy trailing, needs 20,674; about 4 s here). KPIECE1 with the pose
+    projection (x, y, yaw): 5 runs of 20,000, at least 4 solved (they need 1,738-5,291). The
+    budget is a count of propagations, not seconds, so the verdict is the same on a loaded
+    machine (a 5 s budget failed 2 seeds of 20 once in CI); 120 s is only a cap."""
     scene = _scene()
     solved = 0
     for seed in range(1, seeds + 1):
-        result = plan(scene, "kinematic", planner, orientation, budget, seed)
+        result = plan(
+            scene, "kinematic", planner, orientation, 120.0, seed, propagations=propagations
+        )
         if result.solved:
             solved += 1
             _revalidate(scene, result)
@@ -85,3 +90,15 @@ def test_same_seed_same_tree_and_path() -> None:
     assert a.tree_size == b.tree_size and a.path.shape[1] == 6
     np.testing.assert_array_equal(a.path, b.path)
     np.testing.assert_array_equal(a.fine_path, b.fine_path)
+
+
+def test_a_propagation_budget_gives_the_same_run_whatever_the_time_allowed() -> None:
+    """The budget in propagations is machine-independent: with the same seed, a run capped at
+    10 s and one capped at 100 s stop at the same count with the same tree and path."""
+    scene = _scene()
+    short = plan(scene, "kinematic", "rrt", "heavy_leading", 10.0, 3, propagations=300)
+    long = plan(scene, "kinematic", "rrt", "heavy_leading", 100.0, 3, propagations=300)
+    assert short.propagations == long.propagations
+    assert 300 <= short.propagations < 400  # stops within a planner iteration of the budget
+    np.testing.assert_array_equal(short.tree_vertices, long.tree_vertices)
+    np.testing.assert_array_equal(short.path, long.path)
