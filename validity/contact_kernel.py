@@ -29,6 +29,7 @@ MAX_CONTACTS = 12  # a planar convex part touches at most a few features; deeper
 _TINY = 1e-14
 _ALL_TRUE = np.ones(1, dtype=np.bool_)  # read-only default: every edge and vertex is real
 _SEAM_PROBE = 1e-7  # how far past a vertex (length) the solid is probed for a flat joint
+FEATURE_SLOP = 1e-6  # depth (length) below which two features of a pair are not told apart
 
 
 @njit(cache=True)
@@ -50,13 +51,14 @@ def point_polygon_feature(
     cutoff: float = np.inf,
     surface: np.ndarray = _ALL_TRUE,
     corners: np.ndarray = _ALL_TRUE,
-) -> tuple[float, float, float, float, float, bool, bool]:
+) -> tuple[float, float, float, float, float, bool, bool, int]:
     """Signed distance from point p to the convex CCW polygon b[:nb], with its nearest feature.
 
-    Returns ``(gap, nx, ny, cx, cy, at_vertex, hidden)``: the signed distance (negative
+    Returns ``(gap, nx, ny, cx, cy, at_vertex, hidden, edge)``: the signed distance (negative
     inside: the depth to the nearest surface edge line), the unit outward normal of b that
-    pushes p out, the nearest point c of b's boundary, whether c is a vertex of b, and whether
-    the nearest feature is hidden inside the solid that b is a piece of. ``surface[i]`` says
+    pushes p out, the nearest point c of b's boundary, whether c is a vertex of b, whether
+    the nearest feature is hidden inside the solid that b is a piece of, and the edge whose
+    line or segment gave the gap (for a vertex: an edge ending there). ``surface[i]`` says
     whether edge i (from vertex i to i + 1) is a real surface and ``corners[k]`` whether
     vertex k is a corner (not a flat joint) of the solid: a seam never gives the normal of a
     point inside, and a point outside whose nearest feature is a seam or a flat joint is
@@ -76,9 +78,9 @@ def point_polygon_feature(
             if d > depth and surface[min(i, last_s)]:
                 depth, d_nx, d_ny, d_i = d, nx, ny, i
     if inside >= cutoff and in_i >= 0:
-        return inside, in_nx, in_ny, px - inside * in_nx, py - inside * in_ny, False, False
+        return inside, in_nx, in_ny, px - inside * in_nx, py - inside * in_ny, False, False, in_i
     if inside <= 0.0 and d_i >= 0:
-        return depth, d_nx, d_ny, px - depth * d_nx, py - depth * d_ny, False, False
+        return depth, d_nx, d_ny, px - depth * d_nx, py - depth * d_ny, False, False, d_i
     best, cx, cy, vertex, hidden, joint, edge = np.inf, px, py, False, False, -1, 0
     for i in range(nb):
         j = (i + 1) % nb
@@ -100,14 +102,14 @@ def point_polygon_feature(
             nx, ny, ok = _edge_normal(b, i, nb)
             if ok and surface[min(i, last_s)]:
                 gap = nx * (px - b[joint, 0]) + ny * (py - b[joint, 1])
-                return gap, nx, ny, px - gap * nx, py - gap * ny, False, False
+                return gap, nx, ny, px - gap * nx, py - gap * ny, False, False, i
         hidden = True
     if best > _TINY and not vertex:  # the edge's own normal: exact even for a tiny gap
         nx, ny, _ = _edge_normal(b, edge, nb)
-        return best, nx, ny, cx, cy, vertex, hidden
+        return best, nx, ny, cx, cy, vertex, hidden, edge
     if best > _TINY:
-        return best, (px - cx) / best, (py - cy) / best, cx, cy, vertex, hidden
-    return best, in_nx, in_ny, cx, cy, vertex, hidden  # on the boundary: the edge's normal
+        return best, (px - cx) / best, (py - cy) / best, cx, cy, vertex, hidden, edge
+    return best, in_nx, in_ny, cx, cy, vertex, hidden, in_i  # on the boundary: the edge's normal
 
 
 @njit(cache=True)
@@ -256,6 +258,100 @@ def _in_other_disc(circles: np.ndarray, skip: int, px: float, py: float) -> bool
 
 
 @njit(cache=True)
+def separations(a: np.ndarray, na: int, b: np.ndarray, nb: int, out: np.ndarray) -> None:
+    """``out[i]``: the separation of the convex polygon b[:nb] from a[:na] along the outward
+    normal of a's edge i, min over b's vertices of n_i . (b_k - a_i) (length): positive, a
+    separating axis whose value is a lower bound of the distance; negative, b reaches that far
+    behind the edge's line. -inf for a zero-length edge (it is no axis)."""
+    for i in range(na):
+        nx, ny, ok = _edge_normal(a, i, na)
+        if not ok:
+            out[i] = -np.inf
+            continue
+        low = np.inf
+        for k in range(nb):
+            low = min(low, nx * (b[k, 0] - a[i, 0]) + ny * (b[k, 1] - a[i, 1]))
+        out[i] = low
+
+
+@njit(cache=True)
+def _run_end(a: np.ndarray, na: int, edge: int, step: int) -> int:
+    """The vertex where the straight run of edges through ``edge`` ends, going forward
+    (``step`` 1: the run's last vertex) or back (-1: its first): a split edge's collinear
+    pieces are one face."""
+    nx, ny, _ = _edge_normal(a, edge, na)
+    i = edge
+    for _ in range(na - 1):
+        k = (i + step) % na
+        mx, my, ok = _edge_normal(a, k, na)
+        if ok and mx * nx + my * ny < 1.0 - 1e-12:
+            break
+        i = k
+    return (i + 1) % na if step == 1 else i
+
+
+@njit(cache=True)
+def _real(a: np.ndarray, na: int, edge: int, cx: float, cy: float, overlap: float) -> bool:
+    """A vertex outside a whose nearest point c lies on a's face through ``edge`` is a
+    contact of that face only when c is further from the face's ends than the pair already
+    overlaps (a vertex within the overlap of a face's end lies in the plane of the face
+    beside it, which slides over it: the slab's end under a peg's bottom face, paired with
+    the peg's end face, stopped the slide). Box2D keeps a point only inside the reference
+    face's side planes for the same reason."""
+    first, last = _run_end(a, na, edge, -1), _run_end(a, na, edge, 1)
+    inset = min(
+        math.hypot(cx - a[first, 0], cy - a[first, 1]),
+        math.hypot(cx - a[last, 0], cy - a[last, 1]),
+    )
+    return inset > overlap + FEATURE_SLOP
+
+
+@njit(cache=True)
+def _depth_in(b: np.ndarray, nb: int, px: float, py: float) -> float:
+    """Signed distance of p to the edge lines of the convex polygon b[:nb] (the largest one):
+    negative inside, minus p's depth in b."""
+    out = -np.inf
+    for i in range(nb):
+        nx, ny, ok = _edge_normal(b, i, nb)
+        if ok:
+            out = max(out, nx * (px - b[i, 0]) + ny * (py - b[i, 1]))
+    return out
+
+
+@njit(cache=True)
+def _add_axis_contact(world, n, b, nb, surface, sep_part, sep_piece, contacts, nc) -> int:
+    """The contact of an overlap that no vertex explains (two corners passed each other, or
+    the part straddles a thin piece: no vertex of either shape is inside the other): along the
+    separating axis of least penetration (the part's edges and the piece's surface edges), at
+    the deepest vertex of the other shape, with the overlap as its depth."""
+    best, side, axis = -np.inf, 0, -1
+    for i in range(n):
+        if sep_part[i] > best:
+            best, side, axis = sep_part[i], 0, i
+    last = surface.shape[0] - 1
+    for j in range(nb):
+        if surface[min(j, last)] and sep_piece[j] > best:
+            best, side, axis = sep_piece[j], 1, j
+    if axis < 0:
+        return nc
+    if side == 1:  # the piece's edge pushes the part's deepest corner out
+        nx, ny, _ = _edge_normal(b, axis, nb)
+        k, low = 0, np.inf
+        for m in range(n):
+            d = nx * (world[m, 0] - b[axis, 0]) + ny * (world[m, 1] - b[axis, 1])
+            if d < low:
+                k, low = m, d
+        return _add(contacts, nc, best, nx, ny, world[k, 0], world[k, 1])
+    nx, ny, _ = _edge_normal(world, axis, n)  # the piece's deepest vertex pushes the part's edge
+    k, low = 0, np.inf
+    for m in range(nb):
+        d = nx * (b[m, 0] - world[axis, 0]) + ny * (b[m, 1] - world[axis, 1])
+        if d < low:
+            k, low = m, d
+    return _add(contacts, nc, best, -nx, -ny, b[k, 0] - low * nx, b[k, 1] - low * ny)
+
+
+@njit(cache=True)
 def find_contacts(
     world: np.ndarray,
     verts: np.ndarray,
@@ -291,31 +387,49 @@ def find_contacts(
             )
             if depth < np.inf:
                 nc = _add(contacts, nc, -depth, nx, ny, world[k, 0], world[k, 1])
+    sep_part = np.empty(n)  # each piece's separation along the part's edges
+    sep_piece = np.empty(verts.shape[1])  # the part's separation along the piece's edges
     for p in range(verts.shape[0]):
         gap = _box_gap(x0, y0, x1, y1, aabbs[p])
         if gap >= margin:
             clear = min(clear, gap)
             continue
         b, nb = verts[p], counts[p]
+        separations(world, n, b, nb, sep_part)
+        separations(b, nb, world, n, sep_piece)
+        apart = max(sep_part[:n].max(), sep_piece[:nb].max())  # > 0: the pair is disjoint
+        overlap = max(-apart, 0.0)
+        explained = 0.0  # the deepest a vertex of either shape lies inside the other
         nearest = np.inf
         for k in range(n):
             if buried >> k & 1:
+                explained = max(explained, -_depth_in(b, nb, world[k, 0], world[k, 1]))
                 continue
-            d, nx, ny, _, _, _, hidden = point_polygon_feature(
+            d, nx, ny, cx, cy, at_vertex, hidden, edge = point_polygon_feature(
                 world[k, 0], world[k, 1], b, nb, margin, surface[p], corners[p]
             )
             nearest = min(nearest, d)
-            if d < margin and not hidden:
+            explained = max(explained, -d)
+            if (
+                d < margin
+                and not hidden
+                and (d <= 0.0 or at_vertex or _real(b, nb, edge, cx, cy, overlap))
+            ):
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
             if not corners[p, j]:
                 continue
-            d, nx, ny, cx, cy, at_vertex, _ = point_polygon_feature(
+            d, nx, ny, cx, cy, at_vertex, _, edge = point_polygon_feature(
                 b[j, 0], b[j, 1], world, n, margin
             )
             nearest = min(nearest, d)
-            if d < margin and not (d > 0.0 and at_vertex):
+            explained = max(explained, -d)
+            if d < margin and (
+                d <= 0.0 or (not at_vertex and _real(world, n, edge, cx, cy, overlap))
+            ):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
+        if overlap > explained + FEATURE_SLOP:
+            nc = _add_axis_contact(world, n, b, nb, surface[p], sep_part, sep_piece, contacts, nc)
         if nearest >= margin:
             clear = min(clear, nearest)
     for q in range(circles.shape[0]):
@@ -326,7 +440,7 @@ def find_contacts(
         if gap >= margin:
             clear = min(clear, gap)
             continue
-        d, nx, ny, cx, cy, _, _ = point_polygon_feature(ox, oy, world, n, margin + r)
+        d, nx, ny, cx, cy, _, _, _ = point_polygon_feature(ox, oy, world, n, margin + r)
         d -= r
         if d < margin:
             nc = _add(contacts, nc, d, -nx, -ny, cx, cy)

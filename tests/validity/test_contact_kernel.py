@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 import shapely
+import shapely.affinity
 from test_geometry_kernel import _scene
 
 from validity.contact_kernel import (
@@ -30,6 +31,7 @@ from validity.solid_surface import split_at_cover
 MARGIN = 0.05
 N_POSES = 3000
 TOL = 1e-9  # kernel vs shapely distances (length)
+AXIS_TOL = 1e-6  # the same for a depth along an axis (shapely areas near 0 by bisection)
 
 
 def _signed(geom, x: float, y: float) -> float:
@@ -110,7 +112,29 @@ def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[s
     for cx, cy, r in scene.obstacles.circles:
         if math.hypot(px - (gap + r) * nx - cx, py - (gap + r) * ny - cy) < 1e-9:
             candidates.append(("disc", _signed(part, cx, cy) - r))
+    if gap < 0.0:
+        candidates += [("overlap along n", -_push_out(part, g, nx, ny)) for g in polygons]
     return min(candidates, key=lambda c: abs(c[1] - gap))
+
+
+def _push_out(part, piece, nx: float, ny: float) -> float:
+    """How far the part must move along (nx, ny) to overlap the piece by no area (shapely,
+    bisection to 1e-12): the depth of a contact found by the separating-axis test, which a
+    part straddling a thin piece has without any vertex inside the other shape."""
+
+    def overlaps(t: float) -> bool:
+        moved = shapely.affinity.translate(part, t * nx, t * ny)
+        return moved.intersection(piece).area > 1e-20
+
+    if not overlaps(0.0):
+        return 0.0
+    low, high = 0.0, 1.0
+    while overlaps(high):
+        high *= 2.0
+    while high - low > 1e-12:
+        mid = 0.5 * (low + high)
+        low, high = (mid, high) if overlaps(mid) else (low, mid)
+    return high
 
 
 @pytest.mark.parametrize("name", ["table3", "free-form"])
@@ -146,13 +170,22 @@ def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
     margin appears as a contact at that corner: with that gap when outside, with a gap <= 0
     when inside (the depth to the piece's own surface). Outside, corners nearer a disc than
     any polygon are the disc's (the disc's contact is at the part's point nearest its centre;
-    a polygon edge inside a disc, such as the pin finger's end, is no surface)."""
+    a polygon edge inside a disc, such as the pin finger's end, is no surface), and a corner
+    outside a polygon the part already overlaps may lie in the plane of the face that slides
+    over that polygon's end (see the slab tests below), so only corners of parts apart from
+    the polygon are checked outside."""
     scene, arrays, polygons, _, worlds = _case(name)
     missing = checked = 0
     for world in worlds:
         rows, _ = _contacts(arrays, world)
+        part = shapely.Polygon(world)
+        apart = [g for g in polygons if part.intersection(g).area == 0.0]
         for cx, cy in world:
             d = min(_signed(g, cx, cy) for g in polygons)
+            if d >= 0.0 and apart:
+                d = min(_signed(g, cx, cy) for g in apart)
+            elif d >= 0.0:
+                continue
             disc = min(
                 (math.hypot(cx - ox, cy - oy) - r for ox, oy, r in scene.obstacles.circles),
                 default=math.inf,
@@ -203,9 +236,9 @@ def test_a_box_resting_on_a_floor_has_exactly_its_two_bottom_corners() -> None:
 
 def test_point_inside_a_square_gets_the_nearest_edge() -> None:
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    gap, nx, ny, cx, cy, vertex, _ = point_polygon_feature(0.9, 0.5, square, 4)
+    gap, nx, ny, cx, cy, vertex, _, _ = point_polygon_feature(0.9, 0.5, square, 4)
     assert (gap, nx, ny, cx, cy, vertex) == pytest.approx((-0.1, 1.0, 0.0, 1.0, 0.5, False))
-    gap, nx, ny, cx, cy, vertex, _ = point_polygon_feature(2.0, 2.0, square, 4)
+    gap, nx, ny, cx, cy, vertex, _, _ = point_polygon_feature(2.0, 2.0, square, 4)
     assert gap == pytest.approx(math.sqrt(2)) and vertex
     assert (nx, ny) == pytest.approx((1 / math.sqrt(2), 1 / math.sqrt(2)))
 
@@ -234,3 +267,75 @@ def test_seams_between_pieces_of_one_solid_are_not_surfaces() -> None:
     )
     assert nc >= 2
     np.testing.assert_allclose(out[:nc, 1:3], np.tile([0.0, 1.0], (nc, 1)), atol=1e-9)
+
+
+def _peg_on_slab(x_front: float, sunk: float) -> np.ndarray:
+    """Corners of a 2.2 x 0.7 peg lying flat on the slab y <= 0, sunk ``sunk`` into it, its
+    leading end face at x = ``x_front``."""
+    return np.array([[-2.2, 0.0], [0.0, 0.0], [0.0, 0.7], [-2.2, 0.7]]) + [x_front, -sunk]
+
+
+def _slab_contacts(world: np.ndarray, verts: np.ndarray, margin: float = 0.02):
+    counts = np.array([len(v) for v in verts])
+    solid = split_at_cover(verts, counts, np.zeros((0, 3)))
+    out = np.empty((MAX_CONTACTS, 5))
+    nc, _ = find_contacts(
+        world,
+        solid.verts,
+        solid.counts,
+        polygon_aabbs(solid.verts, solid.counts),
+        np.zeros((0, 3)),
+        solid.surface,
+        solid.corners,
+        margin,
+        out,
+    )
+    return out[:nc]
+
+
+@pytest.mark.parametrize("sunk", [0.0, 1e-12, 1e-9, 1e-6, 2.7e-5, 1e-3])
+@pytest.mark.parametrize("x_front", [-0.0087, -0.0018, 0.3])
+def test_a_slab_end_under_a_sliding_face_is_no_contact_of_the_end_face(
+    x_front: float, sunk: float
+) -> None:
+    """Issue 26, fault 1: a peg lying on a slab, its end face short of the slab's end vertex
+    (0, 0) or past it. The vertex lies in the plane of the bottom face, within the overlap
+    the pair already has: every contact pushes up (0, 1), none along the peg's axis (the
+    phantom paired the vertex with the end face, gap 8.7 mm then 1.8 mm, and stopped the
+    slide)."""
+    slab = np.array([[[-20.0, -1.0], [0.0, -1.0], [0.0, 0.0], [-20.0, 0.0]]])
+    rows = _slab_contacts(_peg_on_slab(x_front, sunk), slab)
+    assert len(rows) >= 2
+    np.testing.assert_allclose(rows[:, 1:3], np.tile([0.0, 1.0], (len(rows), 1)), atol=1e-9)
+
+
+def test_a_wall_corner_in_front_of_the_end_face_is_a_contact_of_the_end_face() -> None:
+    """The converse: a wall whose lower corner is 0.35 up the peg's end face, 4 mm ahead of
+    it, is a contact of the end face (normal -x, gap 4e-3, at (0, 0.35)), as is the peg's
+    upper corner against the wall's face, while the peg rests sunk 1e-6 in the floor."""
+    pieces = np.array(
+        [
+            [[-20.0, -1.0], [20.0, -1.0], [20.0, 0.0], [-20.0, 0.0]],
+            [[0.004, 0.35], [1.0, 0.35], [1.0, 3.0], [0.004, 3.0]],
+        ]
+    )
+    rows = _slab_contacts(_peg_on_slab(0.0, 1e-6), pieces)
+    wall = rows[np.abs(rows[:, 1] + 1.0) < 1e-12]
+    assert len(wall) == 2
+    np.testing.assert_allclose(wall[:, 0], 4e-3, atol=1e-12)
+    points = sorted(map(tuple, wall[:, 3:5]))
+    assert points == pytest.approx([(0.0, 0.35), (0.0, 0.7 - 1e-6)], abs=1e-12)
+
+
+def test_a_part_straddling_a_thin_spike_gets_a_contact_as_deep_as_the_overlap() -> None:
+    """Issue 26, fault 2: a thin spike through the middle of the peg, no vertex of either
+    inside the other. The vertex tests see nothing; the separating-axis test gives a contact
+    whose depth is what the peg must move along its normal to clear the spike (shapely)."""
+    spike = np.array([[[-1.0, -3.0], [-0.9, -3.0], [-0.95, 3.0]]])
+    world = _peg_on_slab(0.0, 0.0) + [0.0, 0.0]
+    rows = _slab_contacts(world, spike)
+    assert len(rows) >= 1
+    deepest = rows[np.argmin(rows[:, 0])]
+    push = _push_out(shapely.Polygon(world), shapely.Polygon(spike[0]), deepest[1], deepest[2])
+    assert deepest[0] == pytest.approx(-push, abs=AXIS_TOL)
+    assert push > 0.09
