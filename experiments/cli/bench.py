@@ -1,6 +1,8 @@
 """``partfeeder bench``: run time against error. Work-precision diagrams of the analytic
 scenes beside MuJoCo and pymunk (when installed), the feeder's convergence, the ladder's cost
-against its verdicts' error, speed tables; or, with ``--level``, one level's detailed speed."""
+against its verdicts' error, speed tables; or, with ``--level``, one level's detailed speed;
+or, with ``--agreement``, the same perturbed feeder drops in partfeeder, MuJoCo and pymunk and
+how they agree (:mod:`experiments.bench.agreement`)."""
 
 from __future__ import annotations
 
@@ -38,6 +40,37 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         help="instead: one level's detailed speed report as text (no files)",
     )
     bench.add_argument("--json", action="store_true", help="print the data as JSON")
+    agreement = bench.add_argument_group(
+        "agreement", "the same perturbed drops in partfeeder, MuJoCo and pymunk (issue 26)"
+    )
+    agreement.add_argument(
+        "--agreement",
+        action="store_true",
+        help="instead: the agreement suite (agreement.json, .md, .png in --out)",
+    )
+    agreement.add_argument(
+        "--design",
+        action="append",
+        default=None,
+        metavar="DESIGN",
+        help="a preset, halton:SEED:INDEX or 12 values; repeat for more (default: the suite's "
+        "set of presets and Halton designs)",
+    )
+    agreement.add_argument(
+        "--trials", type=int, default=None, help="trials per design and entry (default 20)"
+    )
+    agreement.add_argument(
+        "--draw-seed", type=int, default=0, help="seed of the perturbation draws (default 0)"
+    )
+    agreement.add_argument(
+        "--peer-step", type=float, default=1e-4, help="MuJoCo's and pymunk's step h in s"
+    )
+    agreement.add_argument(
+        "--engines",
+        default="partfeeder,mujoco,pymunk",
+        help="comma-separated subset of partfeeder,mujoco,pymunk",
+    )
+    agreement.add_argument("--workers", type=int, default=1, help="worker processes (default 1)")
 
 
 def _detail(args: argparse.Namespace, repeats: int) -> int:
@@ -54,7 +87,71 @@ def _detail(args: argparse.Namespace, repeats: int) -> int:
     return 0
 
 
+AGREEMENT_ENGINES = ("partfeeder", "mujoco", "pymunk")
+QUICK_DESIGNS = ("table3", "halton:0:3")
+QUICK_TRIALS = 2
+
+
+def _agreement(args: argparse.Namespace) -> int:
+    """``--agreement``: checks the options (one line each), then runs the suite."""
+    engines = tuple(e.strip() for e in args.engines.split(",") if e.strip())
+    unknown = [e for e in engines if e not in AGREEMENT_ENGINES]
+    if unknown or len(engines) < 2 or len(set(engines)) != len(engines):
+        raise UsageError(
+            f"--engines = {args.engines!r}: two or more of {','.join(AGREEMENT_ENGINES)}"
+        )
+    trials = args.trials if args.trials is not None else (QUICK_TRIALS if args.quick else 20)
+    if not 1 <= trials <= 10_000:
+        raise UsageError(f"--trials = {trials} is outside the allowed range [1, 10000]")
+    if not 0 <= args.draw_seed < 2**32:
+        raise UsageError(f"--draw-seed = {args.draw_seed} is outside the allowed range [0, 2^32)")
+    if not 1e-6 <= args.peer_step <= 1e-2:  # also refuses nan
+        raise UsageError(
+            f"--peer-step = {args.peer_step!r} is outside the allowed range [1e-6, 0.01]"
+        )
+    if not 1 <= args.workers <= 64:
+        raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
+    from experiments.bench.peers import mujoco_engine, pymunk_engine
+
+    for module in (mujoco_engine, pymunk_engine):
+        if module.ENGINE in engines and not module.available():
+            raise UsageError(
+                f"{module.ENGINE} is not installed (pip install 'partfeeder[bench]'), or leave it "
+                "out with --engines"
+            )
+    from experiments.bench.agreement.designs import default_designs, named_design
+    from experiments.bench.agreement.report import markdown, write_outputs
+    from experiments.bench.agreement.suite import AgreementSettings, agreement_data
+    from feeders.feeder import DegenerateDesign, build_feeder
+
+    tokens = args.design or (QUICK_DESIGNS if args.quick else None)
+    designs = [named_design(t) for t in tokens] if tokens else default_designs()
+    for d in designs:
+        try:
+            build_feeder(d.design)
+        except DegenerateDesign as exc:
+            raise UsageError(f"--design {d.name}: {exc}") from None
+    settings = AgreementSettings(
+        trials=trials, seed=args.draw_seed, peer_step=args.peer_step, engines=engines
+    )
+    data = agreement_data(
+        designs,
+        settings,
+        args.workers,
+        progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
+    )
+    paths = write_outputs(data, Path(args.out))
+    if args.json:
+        print(json.dumps(json.loads(paths[0].read_text())["tables"], indent=1))
+    else:
+        print(markdown(json.loads(paths[0].read_text())))
+        print(f"wrote {', '.join(str(p) for p in paths)}")
+    return 0
+
+
 def run(args: argparse.Namespace) -> int:
+    if args.agreement:
+        return _agreement(args)
     repeats = args.repeats if args.repeats is not None else (2 if args.quick else 5)
     if not 1 <= repeats <= 1000:
         raise UsageError(f"--repeats = {repeats} is outside the allowed range [1, 1000]")

@@ -18,6 +18,16 @@ documentation recommends with elliptic cones), 10 noslip iterations (its post-pr
 against slip), the implicitfast integrator and tolerance 1e-10. Contact softness (solref,
 solimp) is left at its default in both: it is what a MuJoCo user gets, and the diagrams show
 what it costs in penetration and in the drop's time to rest.
+
+Feeders (:class:`MujocoFeederSimulator`, for the agreement suite): every convex polygon piece
+is a static mesh, the exact prism of the piece extruded in y (MuJoCo collides a mesh as its
+convex hull, which for a convex prism is the prism itself), with ``multiccd`` on so a face
+resting on a face gets several contact points; every disc (the protuberance's tip) is a sphere
+centred in the part's plane: its section there is the disc exactly, and sphere contacts are
+MuJoCo's exact special case (a cylinder against the box goes through the general convex
+collider, which returned a wrong normal). Options of :data:`FEEDER_OPTIONS`: the elliptic cone
+(the planar friction cone exact), impratio 10, noslip 10, implicitfast, tolerance 1e-10;
+contacts critically damped (MuJoCo's default solref), so no restitution, as the dynamic level.
 """
 
 from __future__ import annotations
@@ -129,6 +139,87 @@ class MujocoSimulator:
             step(model, data)
             out[k, :3], out[k, 3:] = data.qpos, data.qvel
         return out
+
+
+FEEDER_OPTIONS = _OPTIONS["accurate"]
+
+
+def _prism_mesh(name: str, polygon: np.ndarray, depth: float) -> str:
+    """A convex polygon (x, y in the scene's plane) as a MuJoCo mesh asset: the prism from
+    y = -depth to +depth in MuJoCo's frame (the scene's y is MuJoCo's z)."""
+    vertices = []
+    for x, y in np.asarray(polygon, dtype=float):
+        vertices += [x, -depth, y, x, depth, y]
+    return f'    <mesh name="{name}" vertex="{_vec(vertices)}"/>'
+
+
+def feeder_model_xml(scene: Scene, h: float) -> str:
+    """MJCF of a scene with general convex pieces and discs (a feeder) at timestep ``h``."""
+    mu = f"{scene.friction:.17g} 0.005 0.0001"
+    part = scene.part
+    gx, gy = scene.gravity
+    meshes, geoms = [], []
+    for k, polygon in enumerate(scene.obstacles.polygons):
+        meshes.append(_prism_mesh(f"piece{k}", polygon, OBSTACLE_DEPTH))
+        geoms.append(f'    <geom name="obstacle{k}" type="mesh" mesh="piece{k}" friction="{mu}"/>')
+    for k, (cx, cy, radius) in enumerate(scene.obstacles.circles):
+        geoms.append(
+            f'    <geom name="disc{k}" type="sphere" size="{float(radius):.17g}" '
+            f'pos="{_vec((cx, 0.0, cy))}" friction="{mu}"/>'
+        )
+    half = (part.length / 2, PART_DEPTH / 2, part.width / 2)
+    inertia = part.inertia
+    return f"""<mujoco model="{scene.name}">
+  <option timestep="{h:.17g}" gravity="{_vec((gx, 0.0, gy))}" {FEEDER_OPTIONS}>
+    <flag multiccd="enable"/>
+  </option>
+  <asset>
+{chr(10).join(meshes)}
+  </asset>
+  <worldbody>
+{chr(10).join(geoms)}
+    <body name="part">
+      <joint name="x" type="slide" axis="1 0 0"/>
+      <joint name="y" type="slide" axis="0 0 1"/>
+      <joint name="yaw" type="hinge" axis="0 -1 0"/>
+      <inertial pos="0 0 0" mass="{part.mass:.17g}" diaginertia="{_vec((inertia,) * 3)}"/>
+      <geom name="part" type="box" size="{_vec(half)}" pos="{_vec((-part.com_offset, 0, 0))}"
+            friction="{mu}" mass="0"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+class MujocoFeederSimulator:
+    """A feeder scene in MuJoCo at step ``h`` (s) (:func:`feeder_model_xml`); the state is
+    (qpos, qvel) = (x, y, yaw, vx, vy, omega) of the centre of mass."""
+
+    def __init__(self, scene: Scene, h: float):
+        import mujoco
+
+        self.mujoco = mujoco
+        self.h = float(h)
+        self.model = mujoco.MjModel.from_xml_string(feeder_model_xml(scene, h))
+        self.data = mujoco.MjData(self.model)
+
+    def reset(self, start: Sequence[float]) -> None:
+        """The part at ``start`` = (x, y, yaw, vx, vy, omega), every other state reset."""
+        mujoco, data = self.mujoco, self.data
+        mujoco.mj_resetData(self.model, data)
+        data.qpos[:] = start[:3]
+        data.qvel[:] = start[3:6]
+        mujoco.mj_forward(self.model, data)
+
+    def run(self, out: np.ndarray) -> None:
+        """Take ``len(out)`` steps; row k of ``out`` gets the state after step k + 1."""
+        step, model, data = self.mujoco.mj_step, self.model, self.data
+        qpos, qvel = data.qpos, data.qvel
+        for k in range(out.shape[0]):
+            step(model, data)
+            row = out[k]
+            row[:3] = qpos
+            row[3:] = qvel
 
 
 def builder(setting: str) -> Callable[[Scene, float], MujocoSimulator]:

@@ -10,6 +10,12 @@ Elasticity 0 on both (no restitution, as the dynamic level).
 Settings (:data:`SETTINGS`): ``default`` is pymunk's defaults (10 solver iterations, collision
 slop 0.1: overlaps up to 0.1 length are left alone, collision bias (1 - 0.1)^60 per second);
 ``accurate`` uses 100 iterations and a collision slop of 1e-4.
+
+Feeders (:class:`PymunkFeederSimulator`, for the agreement suite): the walls are one chain of
+static segments along the solid's outline (:mod:`experiments.bench.peers.outline`), each
+segment told its neighbours (``Segment.set_neighbors``), not one ``Poly`` per convex piece:
+pieces meeting along internal mitre faces gave pymunk ghost normals at the lip and the exit
+mouth. Discs are ``Circle`` shapes; settings as ``accurate`` (100 iterations, slop 1e-4).
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from experiments.bench.peers.outline import chain_segments, outline_chains
 from feeders.scene import Scene
 
 ENGINE = "pymunk"
@@ -96,6 +103,73 @@ class PymunkSimulator:
             step(h)
             out[k] = self._state()
         return out
+
+
+FEEDER_ITERATIONS = 100
+FEEDER_SLOP = 1e-4
+SEGMENT_RADIUS = 0.0  # the chain's segments are lines: the solid's faces exactly
+
+
+class PymunkFeederSimulator:
+    """A feeder scene in pymunk at step ``h`` (s): walls as segment chains, discs as circles,
+    the part a polygon with the scene's mass and inertia; restitution 0, friction mu (the
+    walls 1: Chipmunk multiplies). ``reset`` builds a fresh space (no contact cache carries
+    over); ``run`` steps and records."""
+
+    def __init__(
+        self,
+        scene: Scene,
+        h: float,
+        iterations: int = FEEDER_ITERATIONS,
+        collision_slop: float = FEEDER_SLOP,
+    ):
+        import pymunk
+
+        self.pymunk = pymunk
+        self.scene = scene
+        self.h = float(h)
+        self.iterations = int(iterations)
+        self.collision_slop = float(collision_slop)
+        self.chains = outline_chains(scene)
+        self.space = pymunk.Space()
+        self.body = pymunk.Body()
+
+    def reset(self, start: Sequence[float]) -> None:
+        """A new space with the part at ``start`` = (x, y, yaw, vx, vy, omega)."""
+        pymunk, scene = self.pymunk, self.scene
+        space = pymunk.Space()
+        space.gravity = (float(scene.gravity[0]), float(scene.gravity[1]))
+        space.iterations = self.iterations
+        space.collision_slop = self.collision_slop
+        for chain in self.chains:
+            for before, a, b, after in chain_segments(chain):
+                seg = pymunk.Segment(
+                    space.static_body, tuple(map(float, a)), tuple(map(float, b)), SEGMENT_RADIUS
+                )
+                seg.set_neighbors(tuple(map(float, before)), tuple(map(float, after)))
+                seg.friction, seg.elasticity = 1.0, 0.0
+                space.add(seg)
+        for cx, cy, radius in scene.obstacles.circles:
+            disc = pymunk.Circle(space.static_body, float(radius), (float(cx), float(cy)))
+            disc.friction, disc.elasticity = 1.0, 0.0
+            space.add(disc)
+        body = pymunk.Body(scene.part.mass, scene.part.inertia)
+        body.position = (float(start[0]), float(start[1]))
+        body.angle = float(start[2])
+        body.velocity = (float(start[3]), float(start[4]))
+        body.angular_velocity = float(start[5])
+        part = pymunk.Poly(body, [tuple(p) for p in scene.part.body_vertices()])
+        part.friction, part.elasticity = float(scene.friction), 0.0
+        space.add(body, part)
+        self.space, self.body = space, body
+
+    def run(self, out: np.ndarray) -> None:
+        """Take ``len(out)`` steps; row k of ``out`` gets the state after step k + 1."""
+        step, h, b = self.space.step, self.h, self.body
+        for k in range(out.shape[0]):
+            step(h)
+            p, v = b.position, b.velocity
+            out[k] = (p.x, p.y, b.angle, v.x, v.y, b.angular_velocity)
 
 
 def builder(setting: str) -> Callable[[Scene, float], PymunkSimulator]:
