@@ -63,10 +63,13 @@ suite on the kernel of docs/agreement.md: P(both) 150/150, mean G 4.52 s."""
 DEFAULT_TOKENS = (
     "table3",
     "halton:0:3",  # works in every engine
-    "halton:0:0",  # fails heavy trailing in every engine
-    "halton:0:6",  # near the threshold heavy trailing
-    "halton:0:8",  # heavy leading: MuJoCo 10/10, partfeeder and pymunk 4/10 (scan of 10)
-    "halton:0:14",  # heavy trailing: MuJoCo 7/10, partfeeder and pymunk 0/10 (scan of 10)
+    "halton:0:34",  # works in every engine
+    "halton:0:0",  # heavy trailing fails in every engine
+    "halton:0:31",  # heavy trailing: the old kernel 19/40, the peers work (issue 26)
+    "halton:0:42",  # heavy trailing: the old kernel 30/40, the peers work
+    "halton:0:6",  # heavy trailing near 0.1-0.3 in every engine
+    "halton:0:8",  # heavy leading: MuJoCo 10/10, partfeeder and pymunk 4/10
+    "halton:0:14",  # heavy trailing: MuJoCo 7/10, partfeeder and pymunk 0/10
 )
 """The default set beside :data:`OPTIMUM`: presets and Halton designs (seed 0) that work, fail
 and sit near the threshold, and where the engines differed in a scan of the first 64 Halton

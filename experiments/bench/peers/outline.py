@@ -11,7 +11,8 @@ The union of the pieces may touch itself only at a vertex (where the interior tu
 walls part on the outside), so it is not one polygon. The outline is therefore taken from the
 free side: the region of a box around the solid minus the union of the polygon pieces, the
 component of it that holds the part's start; its rings (outer boundary and any islands) are
-the chains. Discs are not part of the chains (an engine takes them as exact circles); a polygon
+the chains (the box's own ring, which an open scene's free region reaches, is not a wall and
+is left out). Discs are not part of the chains (an engine takes them as exact circles); a polygon
 face hidden inside a disc (the protuberance finger's end, on the tip disc's diameter) stays in
 the chain, where the part cannot reach it without touching the disc first.
 """
@@ -50,9 +51,19 @@ def outline_chains(scene: Scene, inside: Sequence[float] | None = None) -> list[
     chains = []
     for ring in [region.exterior, *region.interiors]:
         coords = np.asarray(ring.coords)[:-1]
-        if len(coords) >= 3:
+        if len(coords) >= 3 and not _on_box(coords, free.bounds):
             chains.append(coords)
     return chains
+
+
+def _on_box(coords: np.ndarray, bounds: tuple[float, float, float, float]) -> bool:
+    """True for the free box's own outer ring (an open scene's free region reaches it): not a
+    face of the solid, so not a wall."""
+    x0, y0, x1, y1 = bounds
+    return bool(
+        np.any(np.isclose(coords[:, 0], x0) | np.isclose(coords[:, 0], x1))
+        or np.any(np.isclose(coords[:, 1], y0) | np.isclose(coords[:, 1], y1))
+    )
 
 
 def chain_segments(
