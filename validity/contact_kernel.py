@@ -291,19 +291,37 @@ def _run_end(a: np.ndarray, na: int, edge: int, step: int) -> int:
 
 
 @njit(cache=True)
-def _real(a: np.ndarray, na: int, edge: int, cx: float, cy: float, overlap: float) -> bool:
-    """A vertex outside a whose nearest point c lies on a's face through ``edge`` is a
-    contact of that face only when c is further from the face's ends than the pair already
-    overlaps (a vertex within the overlap of a face's end lies in the plane of the face
-    beside it, which slides over it: the slab's end under a peg's bottom face, paired with
-    the peg's end face, stopped the slide). Box2D keeps a point only inside the reference
-    face's side planes for the same reason."""
-    first, last = _run_end(a, na, edge, -1), _run_end(a, na, edge, 1)
-    inset = min(
-        math.hypot(cx - a[first, 0], cy - a[first, 1]),
-        math.hypot(cx - a[last, 0], cy - a[last, 1]),
-    )
-    return inset > overlap + FEATURE_SLOP
+def _keeps(
+    a: np.ndarray,
+    na: int,
+    edge: int,
+    cx: float,
+    cy: float,
+    at_vertex: bool,
+    overlap: float,
+    vertex_pairs: bool,
+) -> bool:
+    """Whether a vertex outside a, whose nearest point of a is c (on the face through
+    ``edge``, or a's vertex), is a contact of the pair, which already overlaps by
+    ``overlap`` (the separating-axis depth; 0 when apart).
+
+    A face contact needs c further from the face's ends than the pair overlaps: a vertex
+    within the overlap of a face's end lies in the plane of the face beside it, which slides
+    over it (the slab's end vertex under a peg's bottom face, paired with the peg's end face,
+    stopped the slide). Box2D keeps a point only inside the reference face's side planes for
+    the same reason. Nearer the end than that, or at a's vertex, the pair is vertex against
+    vertex: a contact only for the part's own corners (``vertex_pairs``; the obstacle's
+    corners would repeat them) and only while the shapes are apart; once they overlap, the
+    corner lies in the plane of a face that slides over the other shape."""
+    if not at_vertex:
+        first, last = _run_end(a, na, edge, -1), _run_end(a, na, edge, 1)
+        inset = min(
+            math.hypot(cx - a[first, 0], cy - a[first, 1]),
+            math.hypot(cx - a[last, 0], cy - a[last, 1]),
+        )
+        if inset > overlap + FEATURE_SLOP:
+            return True
+    return vertex_pairs and overlap <= FEATURE_SLOP
 
 
 @njit(cache=True)
@@ -413,7 +431,7 @@ def find_contacts(
             if (
                 d < margin
                 and not hidden
-                and (d <= 0.0 or at_vertex or _real(b, nb, edge, cx, cy, overlap))
+                and (d <= 0.0 or _keeps(b, nb, edge, cx, cy, at_vertex, overlap, True))
             ):
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
@@ -425,13 +443,12 @@ def find_contacts(
             nearest = min(nearest, d)
             explained = max(explained, -d)
             if d < margin and (
-                d <= 0.0 or (not at_vertex and _real(world, n, edge, cx, cy, overlap))
+                d <= 0.0 or _keeps(world, n, edge, cx, cy, at_vertex, overlap, False)
             ):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
         if overlap > explained + FEATURE_SLOP:
             nc = _add_axis_contact(world, n, b, nb, surface[p], sep_part, sep_piece, contacts, nc)
-        if nearest >= margin:
-            clear = min(clear, nearest)
+        clear = min(clear, nearest)  # below the margin too when a candidate was not kept
     for q in range(circles.shape[0]):
         ox, oy, r = circles[q, 0], circles[q, 1], circles[q, 2]
         gx = max(x0 - ox, 0.0, ox - x1)

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from feeders.scene import Scene
 
 HEAVY_DOWN = "heavy end down"
+SIMULATION_FAULT = "ended inside a wall"
 OUTCOMES = (
     HEAVY_DOWN,  # in the goal: exits heavy end down (success)
     "heavy end up",  # fell into the exit chute the wrong way round
@@ -27,6 +28,7 @@ OUTCOMES = (
     "stopped in the cavity",  # at rest anywhere else inside
     "still moving at t_max",  # neither out nor at rest when the time ran out
     "left the bounds",  # the centre of mass left the scene's bounds
+    "ended inside a wall",  # a simulation fault (final-clearance guard), not the design's
 )
 """Every class, success first (the order of the transition matrix's columns)."""
 
@@ -36,6 +38,8 @@ def classify(scene: Scene, end: str, pose: Sequence[float], success: bool) -> st
     (q(T): x, y, yaw)."""
     if success:
         return HEAVY_DOWN
+    if end == "inside_wall":
+        return SIMULATION_FAULT
     if end == "left_bounds":
         return "left the bounds"
     if end == "crossed":

@@ -4,6 +4,11 @@ The part starts at rest in an entry pose and falls under gravity, with no input.
 at Eq. 10's T: when the centre of mass drops below the goal target's height (q_goal, the top
 of the goal box), or when the part comes to rest, or at ``t_max``. The drop succeeds when the
 pose at T is in the goal region: for the feeder, inside the exit chute with the heavy end down.
+
+A drop that ends with the part inside a wall deeper than the level's penetration tolerance
+(the final-clearance guard, measured by the separating-axis signed distance of
+:mod:`validity.geometry_kernel`, which sees a part straddling a thin wall) is a fault of the
+simulation, not an outcome: it ends ``inside_wall`` and never counts as a success.
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from validity.dynamic import DEFAULT_STEP, DynamicLevel, Trajectory
 REST_SPEED = 1e-3  # every point of the part slower than this (length/s) ...
 REST_TIME = 0.2  # ... for this long (s) counts as at rest
 PAPER_WEIGHT = 5.0  # w of Eq. 10 in the paper
+INSIDE_WALL = "inside_wall"  # a drop's end: q(T) overlaps a wall beyond the tolerance
 
 
 @dataclass(frozen=True)
@@ -46,6 +52,7 @@ class DropResult:
     contact_searches: int
     wall_time: float
     trajectory: Trajectory = field(repr=False)
+    final_depth: float = 0.0  # overlap of the part with the walls at q(T) (length; 0: clear)
 
     def summary(self) -> dict:
         return {
@@ -66,6 +73,7 @@ class DropResult:
             "steps": self.steps,
             "contact_searches": self.contact_searches,
             "wall_time_s": round(self.wall_time, 6),
+            "final_depth": self.final_depth,
         }
 
 
@@ -100,13 +108,15 @@ def passive_drop(
     wall = time.perf_counter() - t0
     final = run.states[run.settle_index]  # q(T): where it came to rest, or the end
     pose = (float(final[0]), float(final[1]), wrap_angle(float(final[2])))
+    depth = max(0.0, -level.clearance(final))
+    inside = depth > level.penetration_tolerance
     energy = run.energy()
     s = run.summary
     return DropResult(
         scene=scene.name,
         orientation=orientation,
-        success=scene.goal.contains(pose),
-        end=run.end,
+        success=scene.goal.contains(pose) and not inside,
+        end=INSIDE_WALL if inside else run.end,
         T=float(run.times[run.settle_index]),
         final_pose=pose,
         goal_error=goal_error(scene, pose),
@@ -121,6 +131,7 @@ def passive_drop(
         contact_searches=int(s["contact_searches"]),
         wall_time=wall,
         trajectory=run,
+        final_depth=depth,
     )
 
 

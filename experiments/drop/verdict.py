@@ -25,7 +25,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
-from experiments.drop.outcomes import OUTCOMES, classify
+from experiments.drop.outcomes import OUTCOMES, SIMULATION_FAULT, classify
 from experiments.drop.passive import passive_drop
 from experiments.drop.perturbations import DropDraw, Perturbations, draw, toleranced
 from experiments.proportions import wilson_interval
@@ -91,6 +91,12 @@ class Trial:
     T: tuple[float, ...]
     goal_error: tuple[float, ...] = ()
 
+    @property
+    def fault(self) -> bool:
+        """A drop of the trial ended inside a wall: a failure of the simulation, not of the
+        design; the verdict leaves the trial out and draws another."""
+        return SIMULATION_FAULT in self.outcome
+
 
 @dataclass(frozen=True)
 class Verdict:
@@ -103,19 +109,29 @@ class Verdict:
     wall_time: float
 
     @property
+    def counted(self) -> tuple[Trial, ...]:
+        """The trials the verdict counts: every one but the simulation faults."""
+        return tuple(t for t in self.trials if not t.fault)
+
+    @property
     def drops(self) -> int:
-        return len(self.trials)
+        return len(self.counted)
+
+    @property
+    def faults(self) -> int:
+        """Trials left out because a drop ended inside a wall (:attr:`Trial.fault`)."""
+        return len(self.trials) - self.drops
 
     def successes(self, orientation: str) -> int:
         k = self.orientations.index(orientation)
-        return sum(t.success[k] for t in self.trials)
+        return sum(t.success[k] for t in self.counted)
 
     def interval(self, orientation: str) -> tuple[float, float]:
         return wilson_interval(self.successes(orientation), self.drops)
 
     @property
     def both(self) -> int:
-        return sum(all(t.success) for t in self.trials)
+        return sum(all(t.success) for t in self.counted)
 
     @property
     def both_interval(self) -> tuple[float, float]:
@@ -136,7 +152,7 @@ class Verdict:
     def exit_times(self, orientation: str) -> list[float]:
         """T (s) of the successful drops from ``orientation``."""
         k = self.orientations.index(orientation)
-        return [t.T[k] for t in self.trials if t.success[k]]
+        return [t.T[k] for t in self.counted if t.success[k]]
 
     def to_dict(self) -> dict:
         per = {}
@@ -145,7 +161,7 @@ class Verdict:
             times = self.exit_times(o)
             per[o] = {
                 "successes": self.successes(o),
-                "p": self.successes(o) / self.drops,
+                "p": self.successes(o) / max(self.drops, 1),
                 "interval": [lo, hi],
                 "mean_exit_time_s": sum(times) / len(times) if times else None,
             }
@@ -155,8 +171,13 @@ class Verdict:
             "works": self.works,
             "target": self.target,
             "drops": self.drops,
+            "simulation_faults": self.faults,
             "orientations": per,
-            "both": {"successes": self.both, "p": self.both / self.drops, "interval": [lo, hi]},
+            "both": {
+                "successes": self.both,
+                "p": self.both / max(self.drops, 1),
+                "interval": [lo, hi],
+            },
             "transitions": self.transitions(),
             "wall_time_s": self.wall_time,
         }
@@ -242,13 +263,17 @@ def verdict_of(
     """Trials of ``make_scene`` (a feeder made from a draw) until the verdict is decided."""
     t0 = time.perf_counter()
     trials: list[Trial] = []
+    counted: list[Trial] = []  # the trials without a simulation fault
     decision = "undecided"
     for look in looks(settings):
-        for index in range(len(trials), look):
-            trials.append(run_trial(make_scene, orientations, settings, seed, index))
-        counts = [sum(t.success[k] for t in trials) for k in range(len(orientations))]
-        decision = decide(counts, len(trials), settings.target)
-        if decision != "undecided":
+        while len(counted) < look and len(trials) < look + settings.max_drops:
+            trial = run_trial(make_scene, orientations, settings, seed, len(trials))
+            trials.append(trial)
+            if not trial.fault:
+                counted.append(trial)
+        counts = [sum(t.success[k] for t in counted) for k in range(len(orientations))]
+        decision = decide(counts, len(counted), settings.target)
+        if decision != "undecided" or len(counted) < look:
             break
     return Verdict(
         tuple(orientations), tuple(trials), settings.target, decision, time.perf_counter() - t0

@@ -128,3 +128,14 @@ def test_a_star_vertex_does_not_end_inside_the_part(h: float | None) -> None:
     path = CASES / "case-7-004193-dynamic.yaml"
     record = _rerun_at(path, h or read_case(path)[0].h)
     assert record["hard"] == []
+
+
+def test_a_corner_touching_a_corner_is_searched_again_next_step() -> None:
+    """Case 4190 of seed 0 (h = 1.4e-5), found by the first run of the new feature rules: a
+    part's corner touching an obstacle's corner (gap 1e-13) while turning into it at 20
+    length/s. Its candidate contact was not kept, and the contact search still reported the
+    obstacle as 0.14 away, so the stepper skipped the search for hundreds of steps while the
+    corner sank 0.10 deep; a candidate not kept now bounds the clearance."""
+    record, stored = _rerun("004190")[0], read_case(CASES / "case-0-004190-dynamic.yaml")[1]
+    assert stored is not None and "penetration" in stored["hard"]
+    assert record["hard"] == []
