@@ -30,10 +30,16 @@ from feeders.scene import Scene
 MARGIN = 1.0  # the free box's overhang around the solid (length)
 
 
-def outline_chains(scene: Scene, inside: Sequence[float] | None = None) -> list[np.ndarray]:
+def outline_chains(
+    scene: Scene, inside: Sequence[float] | None = None, offset: float = 0.0
+) -> list[np.ndarray]:
     """Closed chains (each (n, 2), first vertex not repeated, collinear vertices removed) of
     the solid's polygon pieces around the free region holding ``inside`` (x, y; default the
-    first start pose). ValueError when ``inside`` lies in the solid."""
+    first start pose). ValueError when ``inside`` lies in the solid.
+
+    ``offset`` > 0 moves every face that far into the solid (mitred joins), for segments of
+    that radius: their surface is then the solid's faces exactly, its convex corners rounded
+    by ``offset`` (length)."""
     polygons = [Polygon(p) for p in scene.obstacles.polygons]
     if not polygons:
         return []
@@ -47,11 +53,16 @@ def outline_chains(scene: Scene, inside: Sequence[float] | None = None) -> list[
     holding = [g for g in parts if g.contains(point)]
     if not holding:
         raise ValueError(f"the point {tuple(inside)} is not in the free space of {scene.name}")
-    region = shapely.simplify(holding[0], 0.0)  # drops collinear vertices, keeps the shape
+    region = holding[0]
+    if offset > 0.0:
+        region = region.buffer(offset, join_style="mitre", mitre_limit=100.0)
+    region = shapely.simplify(region, 0.0)  # drops collinear vertices, keeps the shape
+    bx0, by0, bx1, by1 = free.bounds
+    outer = (bx0 - offset, by0 - offset, bx1 + offset, by1 + offset)
     chains = []
     for ring in [region.exterior, *region.interiors]:
         coords = np.asarray(ring.coords)[:-1]
-        if len(coords) >= 3 and not _on_box(coords, free.bounds):
+        if len(coords) >= 3 and not _on_box(coords, outer):
             chains.append(coords)
     return chains
 

@@ -32,6 +32,7 @@ from experiments.bench.agreement.suite import (
     AgreementSettings,
     agreement_data,
     run_trial,
+    trial_starts,
 )
 from experiments.bench.peers.mujoco_engine import MujocoFeederSimulator
 from experiments.bench.peers.outline import chain_segments, outline_chains
@@ -108,10 +109,18 @@ def test_peer_slides_down_a_plain_incline_at_the_coulomb_closed_form(engine):
 
 
 @pytest.mark.parametrize("engine", ["mujoco", "pymunk"])
-def test_peer_reaches_the_lip_at_the_sliding_speed(engine):
-    scene = build_feeder(PRESETS["table3"], restitution=0.0)
-    for orientation in ORIENTATIONS:
-        start = (*scene.start(orientation), 0.0, 0.0, 0.0)
+@pytest.mark.parametrize("trial", [None, 3, 27])
+def test_peer_reaches_the_lip_at_the_sliding_speed(engine, trial):
+    """Nominal starts and two perturbed trials where pymunk, with segments of radius 0, lost
+    a fifth and more of the speed as the part's leading corner passed the lip."""
+    if trial is None:
+        scene = build_feeder(PRESETS["table3"], restitution=0.0)
+        starts = {o: (*scene.start(o), 0.0, 0.0, 0.0) for o in ORIENTATIONS}
+    else:
+        d = draw(Perturbations(), 0, trial, 2)
+        scene = made_feeders(PRESETS["table3"])(d)
+        starts = trial_starts(scene, DynamicLevel(scene), d)
+    for start in starts.values():
         drop = peer_drop(scene, start, PEERS[engine](scene, 1e-4), t_max=4.0)
         assert drop.lip is not None
         assert drop.lip.ratio == pytest.approx(1.0, abs=0.03)
@@ -120,6 +129,19 @@ def test_peer_reaches_the_lip_at_the_sliding_speed(engine):
             closed_form_speed(scene, start, drop.lip.distance)
         )
         assert drop.ending.success  # table3 works
+
+
+def test_offset_chain_keeps_the_faces_where_they_are():
+    """pymunk's segments have radius r on a chain moved r into the solid: every segment lies
+    exactly r from the solid's boundary, so the capsules' surface is the solid's faces."""
+    scene = build_feeder(PRESETS["table3"])
+    r = 1e-3
+    boundary = shapely.unary_union([Polygon(p) for p in scene.obstacles.polygons]).boundary
+    chain = outline_chains(scene, offset=r)[0]
+    assert len(chain) == len(outline_chains(scene)[0])
+    for _, a, b, _ in chain_segments(chain):
+        mid = LineString([a, b]).interpolate(0.5, normalized=True)
+        assert mid.distance(boundary) == pytest.approx(r, abs=1e-12)
 
 
 def test_the_same_draw_gives_every_engine_the_same_feeder_and_start():
