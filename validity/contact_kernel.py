@@ -8,12 +8,42 @@ each one close at most its gap in a step.
 
 The part and the polygons are convex, so two of them first touch vertex-to-edge (or
 vertex-to-vertex): the candidates are each part corner against each nearby polygon, each
-polygon corner against the part (skipped when its nearest point on the part is a part corner,
-which the first pass already reports), and each disc centre against the part. A part corner
+polygon corner against the part, and each disc centre against the part. A part corner
 strictly inside the solid is one contact with its depth in the whole solid (the distance to the
 nearest surface segment, :func:`solid_depth`), not one per piece it lies in. Signed distances
 use the same separating-axis rule as :mod:`validity.geometry_kernel`, so both levels agree on
-what penetrates. Arrays in, numbers out; compiled with numba.
+what penetrates.
+
+Which feature pairs are contacts (issue 26) is decided from the geometry of both shapes, as
+Box2D's polygon collider does (Catto, ``b2CollidePolygons``: a separating-axis reference face,
+and points kept only within its side planes), with the pair's separating-axis test
+(:func:`separations`) computed once per nearby piece:
+
+- a vertex in front of a face, within the margin, is a contact of that face only when its
+  nearest point lies further from the face's ends than the pair already overlaps
+  (:func:`_keeps`). Otherwise the vertex lies in the plane of the face beside it, which is
+  sliding over it: a peg resting on a slab, its bottom face a hair into the slab, has the
+  slab's end vertex in front of its end face, and pairing the two stopped the slide (the
+  speculative contacts of the paper's psi_n / h see gaps before they close, so a wrong
+  pairing acts before any overlap; pymunk and MuJoCo, which make contacts only on overlap,
+  never had it). Ghost collisions at internal seams are the same phenomenon (Catto, "Ghost
+  Collisions", 2020; Chipmunk's segment neighbours); the seams of one solid are handled by the
+  surface and corner flags below;
+- vertex against vertex is a contact only for the part's own corners, and only while the pair
+  is apart (the obstacle's corners would repeat it; once the pair overlaps, the corner lies in
+  the plane of a face sliding over the other shape);
+- an overlap that no vertex explains, deeper than the pair's deepest vertex (two corners that
+  passed each other in one step, a part straddling a thin piece: no vertex of either shape is
+  inside the other, so vertex tests see nothing), gets one contact along the axis of least
+  penetration over the part's edges and the piece's surface edges, at the deepest vertex of
+  the other shape, with that overlap as its depth (:func:`_add_axis_contact`): the
+  separating-axis theorem's penetration depth, exact for convex pairs (Ericson, *Real-Time
+  Collision Detection*, 2005, section 5.2.1).
+
+``FEATURE_SLOP`` (1e-6 length) is the depth below which two features are not told apart: a
+feature of the pair thinner than that is not resolved. A candidate within the margin that is
+not kept still bounds the clearance the stepper uses to skip contact searches. Arrays in,
+numbers out; compiled with numba.
 """
 
 from __future__ import annotations
