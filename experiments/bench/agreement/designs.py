@@ -59,7 +59,7 @@ OPTIMUM = NamedDesign(
 )  # fmt: skip
 """``partfeeder optimize`` with its default config from table3 (no ``--from``), run for this
 suite with the contact kernel of 311df68 (docs/agreement.md): P(both) 150/150 on its fresh
-trials, mean G 4.52 s (table3 6.18 s)."""
+trials, mean G 4.52 s (table3 6.22 s on its own fresh trials)."""
 
 DEFAULT_TOKENS = (
     "table3",
