@@ -41,7 +41,10 @@ and points kept only within its side planes), with the pair's separating-axis te
   Collision Detection*, 2005, section 5.2.1).
 
 ``FEATURE_SLOP`` (1e-6 length) is the depth below which two features are not told apart: a
-feature of the pair thinner than that is not resolved. A candidate within the margin that is
+feature of the pair thinner than that is not resolved, and a vertex that far from the other
+shape or nearer is in contact, whichever feature it is nearest (stress case 11/8546: a corner
+touching the floor just where a ramp leaves it kept only the ramp's normal and sank 0.042 in
+one coarse step). A candidate within the margin that is
 not kept still bounds the clearance the stepper uses to skip contact searches. Arrays in,
 numbers out; compiled with numba.
 """
@@ -461,7 +464,7 @@ def find_contacts(
             if (
                 d < margin
                 and not hidden
-                and (d <= 0.0 or _keeps(b, nb, edge, cx, cy, at_vertex, overlap, True))
+                and (d <= FEATURE_SLOP or _keeps(b, nb, edge, cx, cy, at_vertex, overlap, True))
             ):
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
@@ -473,7 +476,7 @@ def find_contacts(
             nearest = min(nearest, d)
             explained = max(explained, -d)
             if d < margin and (
-                d <= 0.0 or _keeps(world, n, edge, cx, cy, at_vertex, overlap, False)
+                d <= FEATURE_SLOP or _keeps(world, n, edge, cx, cy, at_vertex, overlap, False)
             ):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
         if overlap > explained + FEATURE_SLOP:

@@ -139,3 +139,15 @@ def test_a_corner_touching_a_corner_is_searched_again_next_step() -> None:
     record, stored = _rerun("004190")[0], read_case(CASES / "case-0-004190-dynamic.yaml")[1]
     assert stored is not None and "penetration" in stored["hard"]
     assert record["hard"] == []
+
+
+def test_a_corner_touching_the_floor_where_a_ramp_leaves_it_is_held_by_the_floor() -> None:
+    """Case 8546 of seed 11 (h = 0.037), found by the full run of the new feature rules: a
+    part's corner touching the floor (gap 2e-14) exactly where a ramp piece leaves it. Its
+    nearest floor feature is a covered seam, and the floor's vertex there touched the part's
+    face at its very end, so only the ramp's normal was kept and the corner sank 0.042 into
+    the floor in one step. A vertex within FEATURE_SLOP of the other shape is in contact."""
+    path = CASES / "case-11-008546-dynamic.yaml"
+    case, stored = read_case(path)
+    assert stored is not None and "penetration" in stored["hard"]
+    assert record_of(case)["hard"] == []
