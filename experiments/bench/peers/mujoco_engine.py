@@ -72,12 +72,27 @@ def _quat_about_minus_y(angle: float) -> str:
     return _vec((math.cos(angle / 2), 0.0, -math.sin(angle / 2), 0.0))
 
 
+def _part_body(scene: Scene, mu: str) -> str:
+    """The part as an MJCF body: slide x, slide z and a hinge about -y (the joint values are
+    the scene's x, y and counter-clockwise yaw), the scene's mass and moment about the centre
+    of mass, a box of the part's length and width (depth ``PART_DEPTH``)."""
+    part = scene.part
+    half = (part.length / 2, PART_DEPTH / 2, part.width / 2)
+    return f"""    <body name="part">
+      <joint name="x" type="slide" axis="1 0 0"/>
+      <joint name="y" type="slide" axis="0 0 1"/>
+      <joint name="yaw" type="hinge" axis="0 -1 0"/>
+      <inertial pos="0 0 0" mass="{part.mass:.17g}" diaginertia="{_vec((part.inertia,) * 3)}"/>
+      <geom name="part" type="box" size="{_vec(half)}" pos="{_vec((-part.com_offset, 0, 0))}"
+            friction="{mu}" mass="0"/>
+    </body>"""
+
+
 def model_xml(scene: Scene, h: float, setting: str = "default") -> str:
     """MJCF of ``scene`` with timestep ``h`` and the options of ``setting``."""
     if setting not in _OPTIONS:
         raise ValueError(f"MuJoCo setting {setting!r}; settings: {', '.join(_OPTIONS)}")
     mu = f"{scene.friction:.17g} 0.005 0.0001"
-    part = scene.part
     gx, gy = scene.gravity
     geoms = []
     for k, polygon in enumerate(scene.obstacles.polygons):
@@ -89,20 +104,11 @@ def model_xml(scene: Scene, h: float, setting: str = "default") -> str:
         )
     if len(scene.obstacles.circles):
         raise ValueError("the MuJoCo model takes rectangular obstacles only, not circles")
-    half = (part.length / 2, PART_DEPTH / 2, part.width / 2)
-    inertia = part.inertia
     return f"""<mujoco model="{scene.name}">
   <option timestep="{h:.17g}" gravity="{_vec((gx, 0.0, gy))}" {_OPTIONS[setting]}/>
   <worldbody>
 {chr(10).join(geoms)}
-    <body name="part">
-      <joint name="x" type="slide" axis="1 0 0"/>
-      <joint name="y" type="slide" axis="0 0 1"/>
-      <joint name="yaw" type="hinge" axis="0 -1 0"/>
-      <inertial pos="0 0 0" mass="{part.mass:.17g}" diaginertia="{_vec((inertia,) * 3)}"/>
-      <geom name="part" type="box" size="{_vec(half)}" pos="{_vec((-part.com_offset, 0, 0))}"
-            friction="{mu}" mass="0"/>
-    </body>
+{_part_body(scene, mu)}
   </worldbody>
 </mujoco>
 """
@@ -156,7 +162,6 @@ def _prism_mesh(name: str, polygon: np.ndarray, depth: float) -> str:
 def feeder_model_xml(scene: Scene, h: float) -> str:
     """MJCF of a scene with general convex pieces and discs (a feeder) at timestep ``h``."""
     mu = f"{scene.friction:.17g} 0.005 0.0001"
-    part = scene.part
     gx, gy = scene.gravity
     meshes, geoms = [], []
     for k, polygon in enumerate(scene.obstacles.polygons):
@@ -167,8 +172,6 @@ def feeder_model_xml(scene: Scene, h: float) -> str:
             f'    <geom name="disc{k}" type="sphere" size="{float(radius):.17g}" '
             f'pos="{_vec((cx, 0.0, cy))}" friction="{mu}"/>'
         )
-    half = (part.length / 2, PART_DEPTH / 2, part.width / 2)
-    inertia = part.inertia
     return f"""<mujoco model="{scene.name}">
   <option timestep="{h:.17g}" gravity="{_vec((gx, 0.0, gy))}" {FEEDER_OPTIONS}>
     <flag multiccd="enable"/>
@@ -178,14 +181,7 @@ def feeder_model_xml(scene: Scene, h: float) -> str:
   </asset>
   <worldbody>
 {chr(10).join(geoms)}
-    <body name="part">
-      <joint name="x" type="slide" axis="1 0 0"/>
-      <joint name="y" type="slide" axis="0 0 1"/>
-      <joint name="yaw" type="hinge" axis="0 -1 0"/>
-      <inertial pos="0 0 0" mass="{part.mass:.17g}" diaginertia="{_vec((inertia,) * 3)}"/>
-      <geom name="part" type="box" size="{_vec(half)}" pos="{_vec((-part.com_offset, 0, 0))}"
-            friction="{mu}" mass="0"/>
-    </body>
+{_part_body(scene, mu)}
   </worldbody>
 </mujoco>
 """

@@ -49,6 +49,25 @@ def available() -> bool:
     return True
 
 
+def _add_discs_and_part(pymunk, space, scene: Scene, start: Sequence[float]):
+    """Add the scene's discs (static, friction 1: Chipmunk multiplies the shapes' mu) and the
+    part's body and polygon at ``start`` = (x, y, yaw, vx, vy, omega) to ``space``; returns
+    the part's body."""
+    for cx, cy, radius in scene.obstacles.circles:
+        disc = pymunk.Circle(space.static_body, float(radius), (float(cx), float(cy)))
+        disc.friction, disc.elasticity = 1.0, 0.0
+        space.add(disc)
+    body = pymunk.Body(scene.part.mass, scene.part.inertia)
+    body.position = (float(start[0]), float(start[1]))
+    body.angle = float(start[2])
+    body.velocity = (float(start[3]), float(start[4]))
+    body.angular_velocity = float(start[5])
+    part = pymunk.Poly(body, [tuple(p) for p in scene.part.body_vertices()])
+    part.friction, part.elasticity = float(scene.friction), 0.0
+    space.add(body, part)
+    return body
+
+
 class PymunkSimulator:
     """A pymunk space of a scene at step h, built afresh for every start (no cached contacts
     carry over from one run to the next)."""
@@ -73,19 +92,7 @@ class PymunkSimulator:
             shape = pymunk.Poly(space.static_body, [tuple(p) for p in polygon])
             shape.friction, shape.elasticity = 1.0, 0.0
             space.add(shape)
-        for cx, cy, radius in scene.obstacles.circles:
-            disc = pymunk.Circle(space.static_body, float(radius), (float(cx), float(cy)))
-            disc.friction, disc.elasticity = 1.0, 0.0
-            space.add(disc)
-        body = pymunk.Body(scene.part.mass, scene.part.inertia)
-        body.position = (float(start[0]), float(start[1]))
-        body.angle = float(start[2])
-        body.velocity = (float(start[3]), float(start[4]))
-        body.angular_velocity = float(start[5])
-        part = pymunk.Poly(body, [tuple(p) for p in scene.part.body_vertices()])
-        part.friction, part.elasticity = float(scene.friction), 0.0
-        space.add(body, part)
-        self.space, self.body = space, body
+        self.space, self.body = space, _add_discs_and_part(pymunk, space, scene, start)
 
     def advance(self, steps: int) -> None:
         step, h = self.space.step, self.h
@@ -156,19 +163,7 @@ class PymunkFeederSimulator:
                 seg.set_neighbors(tuple(map(float, before)), tuple(map(float, after)))
                 seg.friction, seg.elasticity = 1.0, 0.0
                 space.add(seg)
-        for cx, cy, radius in scene.obstacles.circles:
-            disc = pymunk.Circle(space.static_body, float(radius), (float(cx), float(cy)))
-            disc.friction, disc.elasticity = 1.0, 0.0
-            space.add(disc)
-        body = pymunk.Body(scene.part.mass, scene.part.inertia)
-        body.position = (float(start[0]), float(start[1]))
-        body.angle = float(start[2])
-        body.velocity = (float(start[3]), float(start[4]))
-        body.angular_velocity = float(start[5])
-        part = pymunk.Poly(body, [tuple(p) for p in scene.part.body_vertices()])
-        part.friction, part.elasticity = float(scene.friction), 0.0
-        space.add(body, part)
-        self.space, self.body = space, body
+        self.space, self.body = space, _add_discs_and_part(pymunk, space, scene, start)
 
     def run(self, out: np.ndarray) -> None:
         """Take ``len(out)`` steps; row k of ``out`` gets the state after step k + 1."""
