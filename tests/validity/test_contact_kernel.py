@@ -272,7 +272,7 @@ def test_seams_between_pieces_of_one_solid_are_not_surfaces() -> None:
 def _peg_on_slab(x_front: float, sunk: float) -> np.ndarray:
     """Corners of a 2.2 x 0.7 peg lying flat on the slab y <= 0, sunk ``sunk`` into it, its
     leading end face at x = ``x_front``."""
-    return np.array([[-2.2, 0.0], [0.0, 0.0], [0.0, 0.7], [-2.2, 0.7]]) + [x_front, -sunk]
+    return np.array([[-2.2, 0.0], [0.0, 0.0], [0.0, 0.7], [-2.2, 0.7]]) + np.array([x_front, -sunk])
 
 
 def _slab_contacts(world: np.ndarray, verts: np.ndarray, margin: float = 0.02):
@@ -332,7 +332,7 @@ def test_a_part_straddling_a_thin_spike_gets_a_contact_as_deep_as_the_overlap() 
     inside the other. The vertex tests see nothing; the separating-axis test gives a contact
     whose depth is what the peg must move along its normal to clear the spike (shapely)."""
     spike = np.array([[[-1.0, -3.0], [-0.9, -3.0], [-0.95, 3.0]]])
-    world = _peg_on_slab(0.0, 0.0) + [0.0, 0.0]
+    world = _peg_on_slab(0.0, 0.0)
     rows = _slab_contacts(world, spike)
     assert len(rows) >= 1
     deepest = rows[np.argmin(rows[:, 0])]
