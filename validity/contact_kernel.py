@@ -16,8 +16,8 @@ what penetrates.
 
 Which feature pairs are contacts (issue 26) is decided from the geometry of both shapes, as
 Box2D's polygon collider does (Catto, ``b2CollidePolygons``: a separating-axis reference face,
-and points kept only within its side planes), with the pair's separating-axis test
-(:func:`separations`) computed once per nearby piece:
+and points kept only within its side planes), with the separating-axis test of the part and
+each nearby piece asked only as far as a rule needs it (:func:`_overlap_below`):
 
 - a vertex in front of a face, within the margin, is a contact of that face only when its
   nearest point lies further from the face's ends than the pair already overlaps
@@ -32,21 +32,19 @@ and points kept only within its side planes), with the pair's separating-axis te
 - vertex against vertex is a contact only for the part's own corners, and only while the pair
   is apart (the obstacle's corners would repeat it; once the pair overlaps, the corner lies in
   the plane of a face sliding over the other shape);
-- an overlap that no vertex explains, deeper than the pair's deepest vertex (two corners that
-  passed each other in one step, a part straddling a thin piece: no vertex of either shape is
-  inside the other, so vertex tests see nothing), gets one contact along the axis of least
-  penetration over the part's edges and the piece's surface edges, at the deepest vertex of
-  the other shape, with that overlap as its depth (:func:`_add_axis_contact`): the
-  separating-axis theorem's penetration depth, exact for convex pairs (Ericson, *Real-Time
-  Collision Detection*, 2005, section 5.2.1).
+- an overlap deeper than any vertex of either shape lies inside the other (two corners that
+  passed each other in one step, a part straddling a thin piece: vertex tests see nothing or
+  too little) gets one contact along the axis of least penetration over the part's edges
+  and the piece's surface edges, at the deepest vertex of the other shape, with that overlap
+  as its depth (:func:`_add_axis_contact`): the separating-axis theorem's penetration depth,
+  exact for convex pairs (Ericson, *Real-Time Collision Detection*, 2005, section 5.2.1).
 
 ``FEATURE_SLOP`` (1e-6 length) is the depth below which two features are not told apart: a
 feature of the pair thinner than that is not resolved, and a vertex that far from the other
 shape or nearer is in contact, whichever feature it is nearest (stress case 11/8546: a corner
 touching the floor just where a ramp leaves it kept only the ramp's normal and sank 0.042 in
-one coarse step). A candidate within the margin that is
-not kept still bounds the clearance the stepper uses to skip contact searches. Arrays in,
-numbers out; compiled with numba.
+one coarse step). A candidate within the margin that is not kept still bounds the clearance
+the stepper uses to skip contact searches. Arrays in, numbers out; compiled with numba.
 """
 
 from __future__ import annotations
@@ -291,36 +289,52 @@ def _in_other_disc(circles: np.ndarray, skip: int, px: float, py: float) -> bool
 
 
 @njit(cache=True)
-def separations(a: np.ndarray, na: int, b: np.ndarray, nb: int, out: np.ndarray) -> None:
-    """``out[i]``: the separation of the convex polygon b[:nb] from a[:na] along the outward
-    normal of a's edge i, min over b's vertices of n_i . (b_k - a_i) (length): positive, a
-    separating axis whose value is a lower bound of the distance; negative, b reaches that far
-    behind the edge's line. -inf for a zero-length edge (it is no axis)."""
-    for i in range(na):
-        nx, ny, ok = _edge_normal(a, i, na)
-        if not ok:
-            out[i] = -np.inf
-            continue
-        low = np.inf
-        for k in range(nb):
-            low = min(low, nx * (b[k, 0] - a[i, 0]) + ny * (b[k, 1] - a[i, 1]))
-        out[i] = low
-
-
-@njit(cache=True)
 def _run_end(a: np.ndarray, na: int, edge: int, step: int) -> int:
     """The vertex where the straight run of edges through ``edge`` ends, going forward
     (``step`` 1: the run's last vertex) or back (-1: its first): a split edge's collinear
     pieces are one face."""
-    nx, ny, _ = _edge_normal(a, edge, na)
+    j = (edge + 1) % na
+    ex, ey = a[j, 0] - a[edge, 0], a[j, 1] - a[edge, 1]
     i = edge
     for _ in range(na - 1):
         k = (i + step) % na
-        mx, my, ok = _edge_normal(a, k, na)
-        if ok and mx * nx + my * ny < 1.0 - 1e-12:
-            break
+        m = (k + 1) % na
+        fx, fy = a[m, 0] - a[k, 0], a[m, 1] - a[k, 1]
+        cross, dot = ex * fy - ey * fx, ex * fx + ey * fy
+        if fx * fx + fy * fy > _TINY * _TINY and (dot <= 0.0 or cross * cross > 1e-24 * dot * dot):
+            break  # turns (a zero-length padding edge is part of the run)
         i = k
     return (i + 1) % na if step == 1 else i
+
+
+@njit(cache=True)
+def _reaches_behind(a: np.ndarray, na: int, c: np.ndarray, nc: int, depth: float) -> bool:
+    """Whether, along every edge normal of the convex polygon a[:na], some vertex of c[:nc]
+    lies at least ``depth`` (>= 0) behind the edge's line. Stops an axis at the first such
+    vertex; no square root (the edge vector's length scales both sides)."""
+    for i in range(na):
+        j = (i + 1) % na
+        ex, ey = a[j, 0] - a[i, 0], a[j, 1] - a[i, 1]
+        ll = ex * ex + ey * ey
+        if ll <= _TINY * _TINY:
+            continue
+        reach = False
+        for k in range(nc):
+            s = ey * (c[k, 0] - a[i, 0]) - ex * (c[k, 1] - a[i, 1])  # |e| times the distance
+            if s <= 0.0 and s * s >= depth * depth * ll:
+                reach = True
+                break
+        if not reach:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _overlap_below(world, n, b, nb, depth) -> bool:
+    """Whether the part and the convex piece b[:nb] overlap by less than ``depth`` (length) in
+    the separating-axis sense: along some edge normal of either shape the other reaches less
+    than ``depth`` behind the edge's line. Most questions end on the part's own four axes."""
+    return not (_reaches_behind(world, n, b, nb, depth) and _reaches_behind(b, nb, world, n, depth))
 
 
 @njit(cache=True)
@@ -331,12 +345,16 @@ def _keeps(
     cx: float,
     cy: float,
     at_vertex: bool,
-    overlap: float,
     vertex_pairs: bool,
+    world: np.ndarray,
+    n: int,
+    b: np.ndarray,
+    nb: int,
+    boxes_apart: bool,
 ) -> bool:
-    """Whether a vertex outside a, whose nearest point of a is c (on the face through
-    ``edge``, or a's vertex), is a contact of the pair, which already overlaps by
-    ``overlap`` (the separating-axis depth; 0 when apart).
+    """Whether a vertex outside a (the part or the piece b), whose nearest point of a is c (on
+    the face through ``edge``, or a's vertex), is a contact of the pair, given how far the
+    pair already overlaps (the separating-axis depth; 0 when apart).
 
     A face contact needs c further from the face's ends than the pair overlaps: a vertex
     within the overlap of a face's end lies in the plane of the face beside it, which slides
@@ -345,16 +363,29 @@ def _keeps(
     the same reason. Nearer the end than that, or at a's vertex, the pair is vertex against
     vertex: a contact only for the part's own corners (``vertex_pairs``; the obstacle's
     corners would repeat them) and only while the shapes are apart; once they overlap, the
-    corner lies in the plane of a face that slides over the other shape."""
+    corner lies in the plane of a face that slides over the other shape. ``boxes_apart``:
+    the bounding boxes of the pair do not meet (so neither do the shapes)."""
+    apart = boxes_apart or _overlap_below(world, n, b, nb, FEATURE_SLOP)
     if not at_vertex:
-        first, last = _run_end(a, na, edge, -1), _run_end(a, na, edge, 1)
-        inset = min(
-            math.hypot(cx - a[first, 0], cy - a[first, 1]),
-            math.hypot(cx - a[last, 0], cy - a[last, 1]),
+        j = (edge + 1) % na
+        own = min(
+            (cx - a[edge, 0]) ** 2 + (cy - a[edge, 1]) ** 2,
+            (cx - a[j, 0]) ** 2 + (cy - a[j, 1]) ** 2,
         )
-        if inset > overlap + FEATURE_SLOP:
+        if apart and own > FEATURE_SLOP * FEATURE_SLOP:  # the face's run holds its own edge
             return True
-    return vertex_pairs and overlap <= FEATURE_SLOP
+        first, last = _run_end(a, na, edge, -1), _run_end(a, na, edge, 1)
+        inset = math.sqrt(
+            min(
+                (cx - a[first, 0]) ** 2 + (cy - a[first, 1]) ** 2,
+                (cx - a[last, 0]) ** 2 + (cy - a[last, 1]) ** 2,
+            )
+        )
+        if inset > FEATURE_SLOP and (
+            apart or _overlap_below(world, n, b, nb, inset - FEATURE_SLOP)
+        ):
+            return True
+    return vertex_pairs and apart
 
 
 @njit(cache=True)
@@ -370,20 +401,24 @@ def _depth_in(b: np.ndarray, nb: int, px: float, py: float) -> float:
 
 
 @njit(cache=True)
-def _add_axis_contact(world, n, b, nb, surface, sep_part, sep_piece, contacts, nc) -> int:
+def _add_axis_contact(world, n, b, nb, surface, contacts, nc) -> int:
     """The contact of an overlap that no vertex explains (two corners passed each other, or
     the part straddles a thin piece: no vertex of either shape is inside the other): along the
     separating axis of least penetration (the part's edges and the piece's surface edges), at
     the deepest vertex of the other shape, with the overlap as its depth."""
     best, side, axis = -np.inf, 0, -1
-    for i in range(n):
-        if sep_part[i] > best:
-            best, side, axis = sep_part[i], 0, i
     last = surface.shape[0] - 1
-    for j in range(nb):
-        if surface[min(j, last)] and sep_piece[j] > best:
-            best, side, axis = sep_piece[j], 1, j
-    if axis < 0:
+    for which, a, na, c, nc_ in ((0, world, n, b, nb), (1, b, nb, world, n)):
+        for i in range(na):
+            nx, ny, ok = _edge_normal(a, i, na)
+            if not ok or (which == 1 and not surface[min(i, last)]):
+                continue
+            low = np.inf
+            for k in range(nc_):
+                low = min(low, nx * (c[k, 0] - a[i, 0]) + ny * (c[k, 1] - a[i, 1]))
+            if low > best:
+                best, side, axis = low, which, i
+    if axis < 0 or best >= 0.0:
         return nc
     if side == 1:  # the piece's edge pushes the part's deepest corner out
         nx, ny, _ = _edge_normal(b, axis, nb)
@@ -438,23 +473,16 @@ def find_contacts(
             )
             if depth < np.inf:
                 nc = _add(contacts, nc, -depth, nx, ny, world[k, 0], world[k, 1])
-    sep_part = np.empty(n)  # each piece's separation along the part's edges
-    sep_piece = np.empty(verts.shape[1])  # the part's separation along the piece's edges
     for p in range(verts.shape[0]):
         gap = _box_gap(x0, y0, x1, y1, aabbs[p])
         if gap >= margin:
             clear = min(clear, gap)
             continue
         b, nb = verts[p], counts[p]
-        separations(world, n, b, nb, sep_part)
-        separations(b, nb, world, n, sep_piece)
-        apart = max(sep_part[:n].max(), sep_piece[:nb].max())  # > 0: the pair is disjoint
-        overlap = max(-apart, 0.0)
         explained = 0.0  # the deepest a vertex of either shape lies inside the other
         nearest = np.inf
         for k in range(n):
             if buried >> k & 1:
-                explained = max(explained, -_depth_in(b, nb, world[k, 0], world[k, 1]))
                 continue
             d, nx, ny, cx, cy, at_vertex, hidden, edge = point_polygon_feature(
                 world[k, 0], world[k, 1], b, nb, margin, surface[p], corners[p]
@@ -464,7 +492,10 @@ def find_contacts(
             if (
                 d < margin
                 and not hidden
-                and (d <= FEATURE_SLOP or _keeps(b, nb, edge, cx, cy, at_vertex, overlap, True))
+                and (
+                    d <= FEATURE_SLOP
+                    or _keeps(b, nb, edge, cx, cy, at_vertex, True, world, n, b, nb, gap > 0.0)
+                )
             ):
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
@@ -476,11 +507,18 @@ def find_contacts(
             nearest = min(nearest, d)
             explained = max(explained, -d)
             if d < margin and (
-                d <= FEATURE_SLOP or _keeps(world, n, edge, cx, cy, at_vertex, overlap, False)
+                d <= FEATURE_SLOP
+                or _keeps(world, n, edge, cx, cy, at_vertex, False, world, n, b, nb, gap > 0.0)
             ):
                 nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
-        if overlap > explained + FEATURE_SLOP:
-            nc = _add_axis_contact(world, n, b, nb, surface[p], sep_part, sep_piece, contacts, nc)
+        # An overlap deeper than every vertex inside the other shape: asked first without the
+        # buried corners' depths in this piece, and never when the boxes are apart.
+        if gap <= 0.0 and not _overlap_below(world, n, b, nb, explained + FEATURE_SLOP):
+            for k in range(n):
+                if buried >> k & 1:
+                    explained = max(explained, -_depth_in(b, nb, world[k, 0], world[k, 1]))
+            if not _overlap_below(world, n, b, nb, explained + FEATURE_SLOP):
+                nc = _add_axis_contact(world, n, b, nb, surface[p], contacts, nc)
         clear = min(clear, nearest)  # below the margin too when a candidate was not kept
     for q in range(circles.shape[0]):
         ox, oy, r = circles[q, 0], circles[q, 1], circles[q, 2]
