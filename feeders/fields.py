@@ -4,6 +4,7 @@ the field and its allowed range, so a user can fix the file without reading our 
 from __future__ import annotations
 
 import math
+import re
 import stat
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -113,15 +114,46 @@ _FAST = yaml.__with_libyaml__
 _PARSER: Any = yaml.CSafeLoader if _FAST else yaml.SafeLoader
 
 
+# Plain scalars YAML 1.1 reads as numbers a reader would not expect: base 60 (1:30 is 90) and
+# a leading zero (017 is 15, octal).
+_SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(:[0-5]?[0-9])+(\.[0-9_]*)?")
+_LEADING_ZERO = re.compile(r"[-+]?0[0-9_]+")
+
+
+def _scalar_problem(event: yaml.ScalarEvent) -> str | None:
+    """Why a scalar is refused: an explicit tag, or a plain YAML 1.1 number that surprises."""
+    if event.tag is not None and event.tag != "!":
+        return f"explicit tags ({event.tag}) are not allowed"
+    if not event.style:  # plain (None or '', by parser)
+        if _SEXAGESIMAL.fullmatch(event.value):
+            return f"{event.value!r} is a sexagesimal (base 60) number in YAML 1.1; quote it"
+        if _LEADING_ZERO.fullmatch(event.value):
+            return f"{event.value!r} has a leading zero (octal in YAML 1.1); drop it or quote it"
+    return None
+
+
 def _check_events(text: str) -> None:
     """Walk the document's parse events (no objects are built) and raise
     ``yaml.composer.ComposerError`` at the first alias (``*name``: a 322-byte "billion laughs"
     document expands to gigabytes), nesting deeper than ``MAX_DEPTH`` (Python's recursion limit
-    ends it in a RecursionError) or node beyond ``MAX_NODES`` (construction time). A scene or
-    config never needs any of them."""
+    ends it in a RecursionError), node beyond ``MAX_NODES`` (construction time), repeated key
+    in one mapping (the last would silently win), explicit tag (``!!float`` made a name a
+    number) or plain number that YAML 1.1 reads in base 60 or 8. A scene or config never needs
+    any of them."""
     depth = nodes = 0
+    mappings: list[tuple[set, list[bool]] | None] = []  # per open node: keys seen, at a key
     for event in yaml.parse(text, Loader=_PARSER):
         problem = None
+        node = isinstance(
+            event, (yaml.ScalarEvent, yaml.MappingStartEvent, yaml.SequenceStartEvent)
+        )
+        if node and mappings and mappings[-1] is not None:
+            keys, at_key = mappings[-1]
+            if at_key[0] and isinstance(event, yaml.ScalarEvent):
+                if event.value in keys:
+                    problem = f"repeated key {event.value!r}"
+                keys.add(event.value)
+            at_key[0] = not at_key[0]
         if isinstance(event, yaml.AliasEvent):
             problem = "aliases (*name) are not allowed"
         elif isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
@@ -129,10 +161,16 @@ def _check_events(text: str) -> None:
             nodes += 1
             if depth > MAX_DEPTH:
                 problem = f"nested deeper than {MAX_DEPTH} levels"
+            elif event.tag is not None and problem is None:
+                problem = f"explicit tags ({event.tag}) are not allowed"
+            is_map = isinstance(event, yaml.MappingStartEvent)
+            mappings.append((set(), [True]) if is_map else None)
         elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
             depth -= 1
+            mappings.pop()
         elif isinstance(event, yaml.ScalarEvent):
             nodes += 1
+            problem = problem or _scalar_problem(event)
         if nodes > MAX_NODES and problem is None:
             problem = f"more than {MAX_NODES} values"
         if problem is not None:

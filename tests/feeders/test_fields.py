@@ -159,3 +159,62 @@ def test_mapping_keys_of_mixed_types_are_listed_not_compared() -> None:
     """sorted() of {1, 'a'} raises TypeError; the unknown keys are named as text."""
     with pytest.raises(FieldError, match=r"unknown key\(s\) \['1', 'b'\]"):
         mapping_field({1: 0, "b": 0, "a": 0}, "doc", {"a"})
+
+
+@pytest.mark.parametrize(
+    "text, line",
+    [
+        ("designs: {count: 8}\nseed: 0\ndesigns: {count: 1000000}\n", 3),
+        ("ladder:\n  - level: geometric\n    budget: {time: 1, time: 2}\n", 3),
+    ],
+)
+def test_a_repeated_key_is_refused_naming_it_and_its_line(
+    tmp_path: Path, text: str, line: int
+) -> None:
+    """Issue 23: a duplicate key was accepted, the last one winning (a repeated ``designs``
+    block with count 10^6 hung a sweep); the project's rule is a safe loader that refuses
+    duplicate keys."""
+    path = tmp_path / "dup.yaml"
+    path.write_text(text)
+    message = _error(path)
+    assert "repeated key" in message and f"line {line}" in message
+
+
+@pytest.mark.parametrize(
+    "value, what",
+    [
+        ("1:30", "sexagesimal"),
+        ("-2:05:30.5", "sexagesimal"),
+        ("017", "leading zero"),
+        ("+0_17", "leading zero"),
+    ],
+)
+def test_yaml_1_1_numbers_that_surprise_are_refused(tmp_path: Path, value: str, what: str) -> None:
+    """Issue 23: YAML 1.1 reads ``count: 1:30`` as 90 (base 60) and ``017`` as 15 (octal)."""
+    path = tmp_path / "num.yaml"
+    path.write_text(f"count: {value}\n")
+    message = _error(path)
+    assert what in message and "line 1" in message
+
+
+@pytest.mark.parametrize("text", ["name: !!float 1000\n", "bounds: !!python/tuple [0, 1]\n"])
+def test_explicit_tags_are_refused(tmp_path: Path, text: str) -> None:
+    """Issue 23: ``!!float`` turned a name into "1000.0"; no scene or config needs a tag."""
+    path = tmp_path / "tag.yaml"
+    path.write_text(text)
+    assert "tag" in _error(path)
+
+
+def test_quoted_and_ordinary_numbers_still_read(tmp_path: Path) -> None:
+    path = tmp_path / "ok.yaml"
+    path.write_text("a: '1:30'\nb: \"017\"\nc: 0\nd: 0.5\ne: 10\nf: 1e-3\ng: -0.25\nh: 1_000\n")
+    assert _read(path) == {
+        "a": "1:30",
+        "b": "017",
+        "c": 0,
+        "d": 0.5,
+        "e": 10,
+        "f": "1e-3",
+        "g": -0.25,
+        "h": 1000,
+    }

@@ -287,6 +287,13 @@ def document_cases() -> Iterator[Case]:
         ("over-1-mib", "# " + "x" * (1 << 20) + "\n"),
         ("unhashable-key", "? [a, b]\n: 1\n"),
         ("mixed-keys", "1: a\nb: 2\n"),
+        # YAML that reads as something else than it says (issue 23)
+        ("duplicate-designs", dump(BASE_CONFIG) + "designs: {count: 1000000, seed: 1}\n"),
+        ("duplicate-nested-key", "designs: {count: 1, count: 2}\n"),
+        ("sexagesimal-count", "designs: {count: 1:30, seed: 1}\n"),
+        ("octal-count", "designs: {count: 017, seed: 1}\n"),
+        ("float-tag-name", "name: !!float 1000\n"),
+        ("str-tag", "name: !!str box\n"),
     ]
     for name, body in bodies:
         yield Case("documents", f"config-{name}", _run_argv(), (("cfg.yaml", body),))
