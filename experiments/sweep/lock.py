@@ -7,6 +7,9 @@ the directory for the whole run; a second run finds it held and raises
 :class:`DirectoryInUse` naming the holder (pid, host, start time, written into the lock file
 by the holder).
 
+The lock file is opened without following a symbolic link (a link planted there had its
+target truncated and overwritten), and anything there but a regular file is refused.
+
 The lock belongs to the open file, not to the file on disk: the operating system releases it
 when the holding process ends in any way, ``kill -9`` included, so a stale lock left by a
 killed run is simply taken over by the next one (its old holder line is overwritten). The
@@ -16,10 +19,12 @@ workers), so a worker that outlives a killed run does not keep the directory loc
 
 from __future__ import annotations
 
+import errno
 import fcntl
 import json
 import os
 import socket
+import stat
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -48,8 +53,20 @@ def sweep_lock(directory: str | Path) -> Iterator[Path]:
     :class:`DirectoryInUse` at once (no waiting) if another process holds it. Yields the
     lock file's path."""
     path = Path(directory) / LOCK_FILE
-    fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
+    refused = DirectoryInUse(
+        f"'{path}' is not a regular file (a link, a pipe or a device); "
+        "remove it or give another --out"
+    )
+    flags = os.O_RDWR | os.O_CREAT | os.O_CLOEXEC | os.O_NOFOLLOW | os.O_NONBLOCK
     try:
+        fd = os.open(path, flags, 0o644)  # never through a link; never blocks on a pipe
+    except OSError as exc:
+        if exc.errno in (errno.ELOOP, errno.ENXIO):
+            raise refused from None
+        raise
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise refused
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:

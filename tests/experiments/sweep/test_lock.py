@@ -61,3 +61,27 @@ def test_the_lock_is_held_inside_and_free_after(tmp_path: Path) -> None:
         pass  # a second open file description conflicts, even in the same process
     with sweep_lock(tmp_path):
         pass
+
+
+@pytest.mark.parametrize("kind", ["symlink", "dangling symlink", "fifo"])
+def test_a_lock_path_that_is_not_a_regular_file_is_refused_and_left_alone(
+    tmp_path: Path, kind: str
+) -> None:
+    """Issue 23: a symbolic link at DIR/partfeeder.lock was followed, and its target truncated
+    and overwritten with the holder's line. The lock is opened without following links, and
+    anything but a regular file there is refused in one line; the target is untouched."""
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me\n")
+    lock = tmp_path / LOCK_FILE
+    if kind == "symlink":
+        lock.symlink_to(target)
+    elif kind == "dangling symlink":
+        lock.symlink_to(tmp_path / "nowhere")
+    else:
+        os.mkfifo(lock)
+    with pytest.raises(DirectoryInUse) as info, sweep_lock(tmp_path):
+        pass
+    message = str(info.value)
+    assert "not a regular file" in message and "\n" not in message
+    assert target.read_text() == "keep me\n"
+    assert not (tmp_path / "nowhere").exists()
