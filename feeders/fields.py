@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import re
 import stat
+import unicodedata
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -71,17 +72,24 @@ def numbers_field(value: Any, field: str, count: int) -> list[float]:
     return [number_field(v, f"{field}[{i}]") for i, v in enumerate(value)]
 
 
+def _breaks_lines(c: str) -> bool:
+    """A control character (C0, DEL, C1 such as U+0085) or a Unicode line or paragraph
+    separator: readers that split text into lines (OMPL's log reader) split on them."""
+    return unicodedata.category(c) in ("Cc", "Zl", "Zp")
+
+
 def name_field(value: Any, field: str = "name") -> str:
     """``value`` as a name that can be part of a file name: a string of 1 to ``MAX_NAME``
-    characters, without '/', NUL or other control characters, and not '.' or '..'."""
+    characters, without '/', control characters or line separators, and not '.' or '..'."""
     if not isinstance(value, (str, int, float)) or isinstance(value, bool):
         raise FieldError(f"{field}: expected a string, got {shown(repr(value))}")
     name = str(value)
     if not 1 <= len(name) <= MAX_NAME:
         raise FieldError(f"{field}: {len(name)} characters; a name has 1 to {MAX_NAME} characters")
-    if "/" in name or name in (".", "..") or any(ord(c) < 32 or ord(c) == 127 for c in name):
+    if "/" in name or name in (".", "..") or any(_breaks_lines(c) for c in name):
         raise FieldError(
-            f"{field} = {name!r}: a name cannot hold '/' or control characters, or be '.' or '..'"
+            f"{field} = {name!r}: a name cannot hold '/', control characters or line "
+            "separators, or be '.' or '..'"
         )
     return name
 

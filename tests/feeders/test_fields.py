@@ -142,7 +142,23 @@ def test_number_field_refuses_integers_beyond_floats_as_out_of_range(value, allo
 
 
 @pytest.mark.parametrize(
-    "value", ["", "x" * (MAX_NAME + 1), "a/b", "..", ".", "a\nb", "tab\there", None, [1], True]
+    "value",
+    [
+        "",
+        "x" * (MAX_NAME + 1),
+        "a/b",
+        "..",
+        ".",
+        "a\nb",
+        "tab\there",
+        None,
+        [1],
+        True,
+        "next\u0085line",  # C1 control NEL (issue 23: OMPL's log reader split on it at export)
+        "line\u2028separator",
+        "para\u2029graph",
+        "c1\x9fcontrol",
+    ],
 )
 def test_names_that_cannot_be_part_of_a_file_name_are_refused(value) -> None:
     with pytest.raises(FieldError) as info:
