@@ -228,12 +228,20 @@ def parse_yaml(text: str) -> Any:
 
 def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
     """The document in the YAML file ``path`` (``yaml.safe_load``, bounded: a regular UTF-8
-    file of at most ``MAX_DOCUMENT_BYTES``, no aliases, at most ``MAX_DEPTH`` levels); a file
-    that cannot be read or parsed raises ``error`` naming the file (``kind``: what it is)."""
+    file of at most ``MAX_DOCUMENT_BYTES``, no aliases, at most ``MAX_DEPTH`` levels), a
+    mapping; a file that cannot be read or parsed, or whose document is not a mapping, raises
+    ``error`` naming the file (``kind``: what it is), never quoting its content."""
     text = _read_text(Path(path), kind, error)
     try:
-        return parse_yaml(text)
+        document = parse_yaml(text)
     except yaml.YAMLError as exc:
         raise error(f"'{shown(path)}' is not valid YAML: {_yaml_problem(exc)}") from None
     except ValueError as exc:  # an integer too long to convert
         raise error(f"'{shown(path)}': {str(exc).split(';')[0]}") from None
+    if not isinstance(document, dict):  # named, never echoed: it may be any file at all
+        what = {str: "text", list: "a list", type(None): "empty"}.get(type(document), "a number")
+        raise error(
+            f"'{shown(path)}' is not a {kind}: a {kind} is a YAML mapping of fields "
+            f"(name: value), and this file's document is {what}"
+        )
+    return document

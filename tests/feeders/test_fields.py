@@ -61,8 +61,8 @@ def test_nesting_beyond_the_limit_is_refused_and_within_it_reads(tmp_path: Path)
     deep = tmp_path / "deep.yaml"
     deep.write_text("[" * 1000 + "]" * 1000)
     assert f"deeper than {MAX_DEPTH}" in _error(deep)
-    fine = tmp_path / "fine.yaml"
-    fine.write_text("[" * MAX_DEPTH + "]" * MAX_DEPTH)
+    fine = tmp_path / "fine.yaml"  # a mapping holding lists MAX_DEPTH deep in all
+    fine.write_text("a: " + "[" * (MAX_DEPTH - 1) + "]" * (MAX_DEPTH - 1))
     assert _read(fine) is not None
 
 
@@ -112,9 +112,9 @@ def test_a_dense_list_within_the_byte_limit_is_refused_by_its_node_count(tmp_pat
     path.write_text("[" + ",".join(["1"] * 400_000) + "]")
     assert path.stat().st_size <= MAX_DOCUMENT_BYTES
     assert f"more than {MAX_NODES} values" in _error(path)
-    fine = tmp_path / "fine.yaml"
-    fine.write_text("[" + ",".join(["1"] * (MAX_NODES - 1)) + "]")
-    assert _read(fine) == [1] * (MAX_NODES - 1)
+    fine = tmp_path / "fine.yaml"  # the mapping, its key and the list are 3 of the nodes
+    fine.write_text("a: [" + ",".join(["1"] * (MAX_NODES - 3)) + "]")
+    assert _read(fine) == {"a": [1] * (MAX_NODES - 3)}
 
 
 def test_an_integer_too_long_to_convert_is_one_line(tmp_path: Path) -> None:
@@ -234,3 +234,25 @@ def test_quoted_and_ordinary_numbers_still_read(tmp_path: Path) -> None:
         "g": -0.25,
         "h": 1000,
     }
+
+
+@pytest.mark.parametrize(
+    "text, what",
+    [
+        ("root:x:0:0:root:/root:/bin/bash\ndaemon:x:1:1:secret\n", "text"),
+        ("just some words\nsecond line secret\n", "text"),
+        ("- secret\n- 2\n", "a list"),
+        ("", "empty"),
+        ("42\n", "a number"),
+    ],
+)
+def test_a_file_that_is_not_a_mapping_is_named_without_echoing_it(
+    tmp_path: Path, text: str, what: str
+) -> None:
+    """Issue 23: a config that is /etc/passwd (or any non-YAML text) had its first lines
+    echoed in the error. The file is named and what its document is, never its content."""
+    path = tmp_path / "not-a-scene"
+    path.write_text(text)
+    message = _error(path)
+    assert "secret" not in message and "root:x" not in message
+    assert "not-a-scene" in message and what in message and "mapping" in message
