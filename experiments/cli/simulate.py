@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from experiments.cli.scenes import add_scene_arguments, load_scene, orientations
-from experiments.cli.usage import UsageError, check_time, out_dir
+from experiments.cli.usage import UsageError, check_count, check_time, out_dir
 
 if TYPE_CHECKING:
     from feeders.scene import Scene
@@ -50,6 +50,7 @@ def run(args: argparse.Namespace) -> int:
     if not (1e-6 <= args.step <= 0.1):
         raise UsageError(f"--step = {args.step} is outside the allowed range [1e-06, 0.1] s")
     check_time(args.time)
+    check_count(args.seed, "--seed", 2**32 - 1, low=0)  # numpy's draws, as stress's
     scene = load_scene(args.design, args.scene)
     if args.samples:
         return _verdict(scene, args)
@@ -104,8 +105,6 @@ def _verdict(scene: Scene, args: argparse.Namespace) -> int:
         )
     if not 0.0 <= args.target <= 1.0:
         raise UsageError(f"--target = {args.target} is outside the allowed range [0, 1]")
-    if args.seed < 0:
-        raise UsageError(f"--seed = {args.seed} must be >= 0")
     settings = VerdictSettings(
         target=args.target,
         min_drops=min(VerdictSettings.min_drops, args.samples),

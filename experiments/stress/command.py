@@ -15,6 +15,7 @@ from experiments.stress.case import LEVEL_NAMES
 
 MAX_CASES = 10_000_000
 MAX_WORKERS = 256
+MAX_SEED = 2**32 - 1  # the seeds numpy draws from, as the verdict's and the sweeps' seeds
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,11 +36,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _levels(text: str) -> tuple[str, ...]:
-    levels = tuple(name.strip() for name in text.split(",") if name.strip())
+    """The levels of ``--levels``: each named once, none empty."""
+    levels = tuple(name.strip() for name in text.split(","))
     bad = [name for name in levels if name not in LEVEL_NAMES]
-    if not levels or bad:
+    if bad or len(set(levels)) != len(levels):
         raise ValueError(
-            f"--levels = {text!r}: expected a comma-separated subset of {', '.join(LEVEL_NAMES)}"
+            f"--levels = {text!r}: expected a comma-separated subset of {', '.join(LEVEL_NAMES)}, "
+            "each named once"
         )
     return levels
 
@@ -51,8 +54,8 @@ def _check(args: argparse.Namespace) -> tuple[str, ...]:
         raise ValueError(
             f"--workers = {args.workers} is outside the allowed range [1, {MAX_WORKERS}]"
         )
-    if args.seed < 0:
-        raise ValueError(f"--seed = {args.seed} must be >= 0")
+    if not 0 <= args.seed <= MAX_SEED:
+        raise ValueError(f"--seed = {args.seed} is outside the allowed range [0, {MAX_SEED}]")
     return _levels(args.levels)
 
 
@@ -62,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         levels = _check(args)
     except ValueError as exc:
-        print(f"partfeeder stress: {exc}", file=sys.stderr)
+        print(f"partfeeder stress: error: {exc}", file=sys.stderr)
         return 2
     if args.replay is not None:
         return _replay(args)
@@ -94,7 +97,7 @@ def _replay(args: argparse.Namespace) -> int:
     try:
         case, stored = read_case(args.replay)
     except CaseError as exc:
-        print(f"partfeeder stress: {exc}", file=sys.stderr)
+        print(f"partfeeder stress: error: {exc}", file=sys.stderr)
         return 2
     record = record_of(case)
     same = stored is not None and record == stored

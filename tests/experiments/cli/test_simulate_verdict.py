@@ -29,6 +29,10 @@ def test_samples_prints_the_verdict_as_json(capsys):
     [
         (["--samples", "-3"], "--samples = -3 is outside the allowed range"),
         (["--samples", "10", "--target", "1.5"], "--target = 1.5 is outside the allowed range"),
+        # issue 23: accepted by simulate (and stress), refused by plan; numpy draws from
+        # [0, 2**32 - 1], with or without --samples
+        (["--seed", str(2**64)], "--seed = 18446744073709551616 is outside the allowed range"),
+        (["--samples", "5", "--seed", "-1"], "--seed = -1 is outside the allowed range [0,"),
     ],
 )
 def test_bad_verdict_options_are_one_line_and_exit_2(extra, message):

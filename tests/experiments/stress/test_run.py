@@ -75,8 +75,22 @@ def test_replay_reproduces_a_failing_case_record(tmp_path):
     assert status == (1 if record["hard"] else 0)
 
 
-def test_bad_input_is_one_line_naming_the_option(capsys):
+@pytest.mark.parametrize(
+    "argv, named",
+    [
+        (["--levels", "geometric,warp"], "--levels"),
+        (["--levels", "geometric,,geometric"], "--levels"),  # issue 23: was accepted
+        (["--levels", "dynamic,dynamic"], "--levels"),
+        (["--seed", str(2**64)], "--seed"),  # issue 23: accepted here, refused by plan
+        (["--seed", "-1"], "--seed"),
+        (["--cases", "0"], "--cases"),
+    ],
+)
+def test_bad_input_is_one_line_naming_the_option(capsys, argv, named):
+    """One line with the ``error:`` prefix every command uses (issue 23: stress lacked it)."""
     parser = argparse.ArgumentParser()
     add_arguments(parser)
-    assert run(parser.parse_args(["--levels", "geometric,warp"])) == 2
-    assert "--levels" in capsys.readouterr().err
+    assert run(parser.parse_args(argv)) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("partfeeder stress: error: ") and named in err
+    assert err.count("\n") == 1
