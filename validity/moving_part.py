@@ -63,12 +63,22 @@ class MovingPartLevel:
         return n, duration / n
 
 
+MAX_RECORDED_STEPS = 10_000_000  # states and telemetry of a recorded run: about 1 GB
+
+
 def run_buffers(
     n_steps: int, record: bool, telemetry_columns: int, summary_fields: int
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """``(out (6,), traj, tele, summary)`` for a compiled run of ``n_steps``: ``traj (n + 1, 6)``
     and ``tele (n, telemetry_columns)`` only when ``record`` (empty otherwise, which tells the
-    kernel not to record), ``summary`` zeroed."""
+    kernel not to record), ``summary`` zeroed. A recording of more than
+    ``MAX_RECORDED_STEPS`` steps (13 numbers a step: about 1 GB at the bound) raises
+    ValueError before anything is allocated."""
+    if record and n_steps > MAX_RECORDED_STEPS:
+        raise ValueError(
+            f"a recorded run of {n_steps} steps; at most {MAX_RECORDED_STEPS} are recorded "
+            "(duration / h): a shorter duration or a larger step"
+        )
     rows = n_steps if record else 0
     return (
         np.empty(6),

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -51,6 +52,14 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(f"--step = {args.step} is outside the allowed range [1e-06, 0.1] s")
     check_time(args.time)
     check_count(args.seed, "--seed", 2**32 - 1, low=0)  # numpy's draws, as stress's
+    from validity.moving_part import MAX_RECORDED_STEPS
+
+    steps = math.ceil(args.time / args.step - 1e-9)
+    if steps > MAX_RECORDED_STEPS:
+        raise UsageError(
+            f"--time / --step = {steps} steps; a recorded drop has at most "
+            f"{MAX_RECORDED_STEPS}: a shorter --time or a larger --step"
+        )
     scene = load_scene(args.design, args.scene)
     if args.samples:
         return _verdict(scene, args)

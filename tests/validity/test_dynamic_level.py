@@ -478,3 +478,15 @@ def test_a_peg_sliding_over_a_convex_corner_keeps_its_coulomb_speed(dy: float, h
     expected = math.sqrt(9.0 - 2.0 * SLAB_MU * G * 2.8)
     allowed = 2.0 * SLAB_MU * G * h + SLAB_MU * math.sqrt(2.0 * G * dy) + 1e-9
     assert abs(_slab_speed(dy, h) - expected) <= allowed
+
+
+def test_a_recorded_run_too_long_to_hold_is_refused_before_allocating() -> None:
+    """Issue 23: ``simulate --step 1e-6 --time 3600`` tried to allocate 161 GiB and died of a
+    MemoryError. A recorded run holds at most MAX_RECORDED_STEPS steps (about 1 GB); past
+    that the level says so at once, naming the steps; unrecorded propagations are not
+    bounded (they keep no states)."""
+    level = DynamicLevel(_floor_scene(), step=1e-6)
+    start = level.state_of_pose(_floor_scene().start("flat"))
+    with pytest.raises(ValueError, match=r"3600000000 steps.*at most 10000000"):
+        level.simulate(start, duration=3600.0)
+    assert len(level.propagate(start, (0.0, 0.0, 0.0), 1e-5)) == 6

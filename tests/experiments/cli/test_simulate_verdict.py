@@ -33,6 +33,8 @@ def test_samples_prints_the_verdict_as_json(capsys):
         # [0, 2**32 - 1], with or without --samples
         (["--seed", str(2**64)], "--seed = 18446744073709551616 is outside the allowed range"),
         (["--samples", "5", "--seed", "-1"], "--seed = -1 is outside the allowed range [0,"),
+        # issue 23: a MemoryError traceback after trying to allocate 161 GiB
+        (["--step", "1e-6", "--time", "3600"], "3600000000 steps; a recorded drop has at most"),
     ],
 )
 def test_bad_verdict_options_are_one_line_and_exit_2(extra, message):
