@@ -136,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
     from experiments.sweep.lock import sweep_lock
 
     bar = _Bar(args.quiet or args.json)
-    with sweep_lock(out):
+    with sweep_lock(out, job="optimize"):
         t0 = time.perf_counter()
         try:
             results = optimise(config, out, best, args.executor, args.scheduler, progress=bar)

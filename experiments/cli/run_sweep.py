@@ -121,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
     out = out_dir(args.out or DEFAULT_OUT / config.name, inputs=[Path(args.config)])
     assert out is not None
     bars = _Bars(args.quiet or args.json)
-    with sweep_lock(out):
+    with sweep_lock(out, job="run"):
         t0 = time.perf_counter()
         try:
             results = run_sweep(config, out, args.executor, args.scheduler, progress=bars)

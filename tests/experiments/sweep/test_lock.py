@@ -85,3 +85,31 @@ def test_a_lock_path_that_is_not_a_regular_file_is_refused_and_left_alone(
     assert "not a regular file" in message and "\n" not in message
     assert target.read_text() == "keep me\n"
     assert not (tmp_path / "nowhere").exists()
+
+
+def test_a_directory_of_another_job_is_refused_naming_the_job(tmp_path: Path) -> None:
+    """Issue 23: ``optimize --out SWEEP_DIR`` and ``run --out OPTIMIZE_DIR`` both ran and
+    overwrote the other job's summary.json and report.html. The lock file records its job;
+    another job's directory is refused by name, the same job's is taken again."""
+    with sweep_lock(tmp_path, job="optimize"):
+        pass
+    with pytest.raises(DirectoryInUse) as info, sweep_lock(tmp_path, job="run"):
+        pass
+    message = str(info.value)
+    assert "partfeeder optimize" in message and "--out" in message and "\n" not in message
+    with sweep_lock(tmp_path, job="optimize") as path:
+        assert json.loads(path.read_text())["job"] == "optimize"
+
+
+def test_a_held_lock_names_the_holders_job(tmp_path: Path) -> None:
+    """The lock message said 'another partfeeder run' even for optimize."""
+    with sweep_lock(tmp_path, job="optimize"), pytest.raises(DirectoryInUse) as info:
+        with sweep_lock(tmp_path, job="optimize"):
+            pass
+    assert "another partfeeder optimize" in str(info.value)
+
+
+def test_a_lock_file_from_before_jobs_were_recorded_is_taken(tmp_path: Path) -> None:
+    (tmp_path / LOCK_FILE).write_text(json.dumps({"pid": 1, "host": "h", "started": "t"}))
+    with sweep_lock(tmp_path, job="run") as path:
+        assert json.loads(path.read_text())["job"] == "run"
