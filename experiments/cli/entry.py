@@ -13,6 +13,10 @@ another on the same designs and budgets (is the first level's feasible set a sub
 Building the parser imports only light modules (see the registry), so ``partfeeder --help``
 and a bad argument answer at once; numba, OMPL and matplotlib load in the subcommand that runs.
 
+SIGTERM is handled as Ctrl-C: a job stops, stores what is done, releases its lock and says so
+in one line (exit status 130); its workers ignore SIGINT and die with it
+(:mod:`experiments.worker_process`).
+
 Exit status: 0 done (whether or not a plan was found: see the output), 2 bad input: one
 line on stderr, whether a subcommand found it (``UsageError``) or a reader or job below it did
 (:func:`experiments.cli.errors.input_error_line`); any other exception is a bug and keeps its
@@ -22,6 +26,7 @@ traceback.
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from collections.abc import Sequence
 from types import ModuleType
@@ -75,7 +80,12 @@ def run(argv: Sequence[str] | None = None) -> int:
     return 2
 
 
+def _terminate(signum: int, frame: object) -> NoReturn:
+    raise KeyboardInterrupt  # SIGTERM (kill, a service manager, SLURM) stops as Ctrl-C does
+
+
 def main(argv: Sequence[str] | None = None) -> None:
+    signal.signal(signal.SIGTERM, _terminate)
     try:
         code = run(argv)
     except SystemExit as exc:  # argparse: --help, usage errors

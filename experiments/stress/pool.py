@@ -14,6 +14,7 @@ from typing import Any
 from experiments.stress.case import LEVEL_NAMES
 from experiments.stress.generate import generate_case
 from experiments.stress.runner import record_of
+from experiments.worker_process import start_plain_worker
 
 Result = tuple[dict[str, Any], float]
 CHUNK = 16  # cases per task: few round trips, a smooth progress bar
@@ -48,7 +49,9 @@ def run_one(seed: int, levels: tuple[str, ...], index: int) -> Result:
 
 
 def warm_up(levels: tuple[str, ...]) -> None:
-    """Compile (or load) every level's kernels in this process, so no case's time counts it."""
+    """Start a worker (:func:`experiments.worker_process.start_worker`) and compile (or load)
+    every level's kernels in it, so no case's time counts them."""
+    start_plain_worker()
     for level in levels:
         record_of(generate_case(0, LEVEL_NAMES.index(level), LEVEL_NAMES))
 

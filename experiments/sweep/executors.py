@@ -22,19 +22,14 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from concurrent.futures.process import BrokenProcessPool
 from typing import TYPE_CHECKING, Any
 
+from experiments.worker_process import quiet_ompl, start_worker
+
 if TYPE_CHECKING:
     from experiments.sweep.job import SweepJob as Job
 
 Evaluate = Callable[["Job"], dict[str, Any]]
 OnDone = Callable[["Job", dict[str, Any], int], Iterable["Job"]]
 OnQuarantine = Callable[["Job", int, str], None]
-
-
-def quiet_worker() -> None:
-    """Worker start-up: OMPL's console log off (it would interleave with the progress bars)."""
-    from ompl import util as ou
-
-    ou.setLogLevel(ou.LogLevel.LOG_NONE)
 
 
 def _death(exitcode: int | None) -> str:
@@ -51,7 +46,7 @@ def _error(exc: BaseException) -> str:
 
 
 def _alone(evaluate: Evaluate, job: Job, conn) -> None:
-    quiet_worker()
+    start_worker()
     try:
         conn.send(("ok", evaluate(job)))
     except Exception as exc:
@@ -97,7 +92,7 @@ class LocalPool:
             self._pool = None
 
     def _new_pool(self) -> ProcessPoolExecutor:
-        return ProcessPoolExecutor(self.workers, mp_context=self._context, initializer=quiet_worker)
+        return ProcessPoolExecutor(self.workers, mp_context=self._context, initializer=start_worker)
 
     def run(
         self, evaluate: Evaluate, jobs: Iterable[Job], on_done: OnDone, on_quarantine: OnQuarantine
@@ -275,7 +270,7 @@ class DaskPool:
             ) from None
         check_scheduler(self.scheduler)
         self._client = Client(self.scheduler, set_as_default=False, timeout=10)
-        self._client.run(quiet_worker)
+        self._client.run(quiet_ompl)
         return self
 
     def __exit__(self, *exc: object) -> None:

@@ -23,6 +23,7 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 
 from experiments.proportions import wilson_interval
+from experiments.worker_process import start_worker
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.halton import halton_points
@@ -127,13 +128,6 @@ def _job(job: FeasibilityJob) -> dict:
     return {"index": job.index, "slot": job.slot, **row}
 
 
-def _quiet_worker() -> None:
-    """Worker start-up: OMPL's console log off (it would interleave with the progress bar)."""
-    from ompl import util as ou
-
-    ou.setLogLevel(ou.LogLevel.LOG_NONE)
-
-
 def compare_levels(
     n: int,
     levels: Sequence[str],
@@ -202,7 +196,7 @@ def compare_levels(
     else:
         context = multiprocessing.get_context("spawn")
         with ProcessPoolExecutor(
-            max_workers=min(workers, len(jobs)), mp_context=context, initializer=_quiet_worker
+            max_workers=min(workers, len(jobs)), mp_context=context, initializer=start_worker
         ) as pool:
             pending = {pool.submit(_job, job) for job in jobs}
             try:

@@ -41,6 +41,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from experiments.worker_process import quiet_ompl, start_worker
 from feeders.design import PAPER_GEOMETRIC_VERDICT
 
 AXES = ("length", "width", "heavy_fraction", "friction")
@@ -263,13 +264,6 @@ def geometric_columns(shape: tuple[float, float, float], budget: Budget) -> dict
     }
 
 
-def _quiet() -> None:
-    """Worker start-up: OMPL's console log off (it would interleave with the progress bar)."""
-    from ompl import util as ou
-
-    ou.setLogLevel(ou.LogLevel.LOG_NONE)
-
-
 # ---- the choice ----
 
 
@@ -367,10 +361,10 @@ def run_landscape(
         raise ValueError("the grid has no peg with width <= length")
     note = progress or (lambda _label, _n: None)
     if workers == 1:
-        _quiet()
+        quiet_ompl()
         return _landscape(grid, budget, points, _Inline(), note)
     context = multiprocessing.get_context("spawn")  # no fork of a threaded parent
-    with ProcessPoolExecutor(workers, mp_context=context, initializer=_quiet) as pool:
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=start_worker) as pool:
         return _landscape(grid, budget, points, pool, note)
 
 

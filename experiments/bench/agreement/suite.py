@@ -23,6 +23,7 @@ from experiments.bench.agreement.designs import NamedDesign
 from experiments.bench.agreement.drops import Drop, Peer, partfeeder_drop, peer_drop
 from experiments.drop.perturbations import Perturbations, draw
 from experiments.drop.verdict import UNBUILDABLE, entry_state, made_feeders
+from experiments.worker_process import start_plain_worker
 from feeders.feeder import ORIENTATIONS, DegenerateDesign
 from feeders.scene import Scene
 from validity.dynamic import DEFAULT_STEP, DynamicLevel
@@ -192,7 +193,9 @@ def run_agreement(
                 progress(f"{job[0].name}: {settings.trials} trials done")
     else:
         context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(workers, mp_context=context) as pool:
+        with ProcessPoolExecutor(
+            workers, mp_context=context, initializer=start_plain_worker
+        ) as pool:
             for k, result in enumerate(pool.map(_job, jobs)):
                 rows += result
                 if progress and (k + 1) % settings.trials == 0:

@@ -200,3 +200,106 @@ def test_the_dask_executor_gives_the_results_of_the_local_one(
         run_sweep(tiny_config(), tmp_path, executor="dask", scheduler=cluster.scheduler_address)
     got = machine_independent_rows(tmp_path / "results.sqlite")
     assert got == machine_independent_rows(reference / "results.sqlite")
+
+
+def _processes() -> dict[int, int]:
+    """Every live (not zombie) process and its parent, from the kernel's process table."""
+    table = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as f:
+                    state, parent = f.read().rsplit(")", 1)[1].split()[:2]
+            except (FileNotFoundError, ProcessLookupError):
+                continue
+            if state != "Z":
+                table[int(entry)] = int(parent)
+    return table
+
+
+def _children(pid: int) -> set[int]:
+    return {p for p, parent in _processes().items() if parent == pid}
+
+
+def _gone(pids: set[int], within_s: float = 60.0) -> bool:
+    """Every one of ``pids`` has ended, looked at until ``within_s`` (a bound for a loaded
+    machine; the workers look for their parent every 0.5 s)."""
+    deadline = time.monotonic() + within_s
+    while time.monotonic() < deadline:
+        if not pids & set(_processes()):
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path]:
+    """A sweep in a session of its own, returned once it has stored 3 evaluations."""
+    config_file = tmp_path / "tiny.yaml"
+    config_file.write_text(yaml.safe_dump(tiny_config().to_dict()))
+    out = tmp_path / "sweep"
+    command = [sys.executable, "-m", "experiments.cli", "run", str(config_file), "--out", str(out)]
+    command += ["--no-report", "--quiet"]
+    process = subprocess.Popen(
+        command,
+        start_new_session=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    results = out / "results.sqlite"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and process.poll() is None:
+        if results.exists():
+            try:
+                with sqlite3.connect(results, timeout=1) as db:
+                    if db.execute("SELECT COUNT(*) FROM evaluations").fetchone()[0] >= 3:
+                        break
+            except sqlite3.OperationalError:
+                pass
+        time.sleep(0.05)
+    assert process.poll() is None, "the sweep ended before it could be signalled"
+    return command, process, out
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resumes(
+    reference: Path, tmp_path: Path, sig: signal.Signals
+) -> None:
+    """Issue 23: ``kill PID`` (SIGTERM, as a service manager or SLURM sends) exited -15 with no
+    message and left its workers and the resource tracker running; Ctrl-C printed worker
+    tracebacks. Now either stops as Ctrl-C: exit 130, one line, every child process gone, the
+    lock free, and the same command resumes to the rows of an uninterrupted run."""
+    from experiments.sweep.lock import sweep_lock
+
+    command, process, out = _start_sweep(tmp_path)
+    children = _children(process.pid)
+    assert children  # the workers (and multiprocessing's resource tracker)
+    if sig == signal.SIGINT:
+        os.killpg(process.pid, sig)  # Ctrl-C reaches the whole group
+    else:
+        os.kill(process.pid, sig)  # kill PID: the main process alone
+    _, err = process.communicate(timeout=120)
+    assert process.returncode == 130, err
+    assert err.count("\n") == 1 and "interrupted" in err
+    assert _gone(children)
+    with sweep_lock(out):
+        pass
+    again = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0, again.stderr
+    assert machine_independent_rows(out / "results.sqlite") == machine_independent_rows(
+        reference / "results.sqlite"
+    )
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
+def test_the_workers_of_a_sweep_whose_main_process_is_killed_with_sigkill_end(
+    tmp_path: Path,
+) -> None:
+    """kill -9 of the main process alone: its workers re-parented to PID 1 used to stay."""
+    _, process, _ = _start_sweep(tmp_path)
+    children = _children(process.pid)
+    assert children
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    assert _gone(children)

@@ -1,0 +1,77 @@
+"""Worker processes die with their parent and leave interrupts to it (issue 23: after a
+SIGTERM or SIGKILL of the main process its two workers stayed, re-parented to PID 1, 180 MB
+each, 240 s later). References: the kernel's process table (/proc) and signals sent by hand."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+pytestmark = pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
+
+PARENT = """
+import os, sys, time
+from concurrent.futures import ProcessPoolExecutor
+import multiprocessing
+from experiments.worker_process import start_plain_worker
+pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"),
+                           initializer=start_plain_worker)
+print(pool.submit(os.getpid).result(), flush=True)
+time.sleep(600)
+"""
+GONE_WITHIN_S = 60.0  # the watchdog looks every 0.5 s; generous for a loaded machine
+
+
+def alive(pid: int) -> bool:
+    """The process exists and is not a zombie (a reaped or exited process is gone)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+def wait_gone(pid: int) -> bool:
+    deadline = time.monotonic() + GONE_WITHIN_S
+    while time.monotonic() < deadline:
+        if not alive(pid):
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def _parent_and_worker() -> tuple[subprocess.Popen, int]:
+    parent = subprocess.Popen(
+        [sys.executable, "-c", PARENT], stdout=subprocess.PIPE, text=True, start_new_session=True
+    )
+    assert parent.stdout is not None
+    return parent, int(parent.stdout.readline())
+
+
+def test_a_worker_ends_when_its_parent_is_killed_with_sigkill() -> None:
+    parent, worker = _parent_and_worker()
+    try:
+        assert alive(worker)
+        os.kill(parent.pid, signal.SIGKILL)  # the parent alone, not its group
+        parent.wait()
+        assert wait_gone(worker)
+    finally:
+        if alive(worker):
+            os.kill(worker, signal.SIGKILL)
+
+
+def test_a_worker_ignores_ctrl_c_which_is_its_parents_to_handle() -> None:
+    parent, worker = _parent_and_worker()
+    try:
+        os.kill(worker, signal.SIGINT)
+        time.sleep(1.0)
+        assert alive(worker)
+    finally:
+        os.killpg(parent.pid, signal.SIGKILL)
+        parent.wait()
+        wait_gone(worker)
