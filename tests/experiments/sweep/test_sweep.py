@@ -232,6 +232,10 @@ def _gone(pids: set[int], within_s: float = 60.0) -> bool:
     return False
 
 
+def _interruptible() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path]:
     """A sweep in a session of its own, returned once it has stored 3 evaluations."""
     config_file = tmp_path / "tiny.yaml"
@@ -245,6 +249,9 @@ def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path]:
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,
+        # as from a terminal: a test runner started in the background inherits SIGINT
+        # ignored, and Python then never turns Ctrl-C into KeyboardInterrupt
+        preexec_fn=_interruptible,
     )
     results = out / "results.sqlite"
     deadline = time.monotonic() + 120
