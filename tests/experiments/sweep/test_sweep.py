@@ -142,28 +142,8 @@ def test_a_second_start_runs_nothing_and_duplicates_nothing(
 def test_a_sweep_killed_with_sigkill_resumes_to_the_rows_of_an_uninterrupted_run(
     reference: Path, tmp_path: Path
 ) -> None:
-    config_file = tmp_path / "tiny.yaml"
-    config_file.write_text(yaml.safe_dump(tiny_config().to_dict()))
-    out = tmp_path / "sweep"
-    command = [sys.executable, "-m", "experiments.cli", "run", str(config_file), "--out", str(out)]
-    command += ["--no-report", "--quiet"]
-    process = subprocess.Popen(
-        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
-    )
+    command, process, out, stored = _start_sweep(tmp_path)
     results = out / "results.sqlite"
-    deadline = time.monotonic() + 120
-    stored = 0
-    while time.monotonic() < deadline and process.poll() is None:
-        if results.exists():
-            try:
-                with sqlite3.connect(results, timeout=1) as db:
-                    stored = db.execute("SELECT COUNT(*) FROM evaluations").fetchone()[0]
-            except sqlite3.OperationalError:
-                stored = 0
-            if stored >= 3:
-                break
-        time.sleep(0.05)
-    assert process.poll() is None, "the sweep ended before it could be killed"
     os.killpg(process.pid, signal.SIGKILL)  # the main process and its workers, mid-run
     process.wait()
     total = len(machine_independent_rows(reference / "results.sqlite")["evaluations"])
@@ -236,8 +216,9 @@ def _interruptible() -> None:
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
-def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path]:
-    """A sweep in a session of its own, returned once it has stored 3 evaluations."""
+def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path, int]:
+    """A sweep of the tiny config in a session of its own, returned (command, process, out
+    directory, evaluations stored) once it has stored at least 3 evaluations."""
     config_file = tmp_path / "tiny.yaml"
     config_file.write_text(yaml.safe_dump(tiny_config().to_dict()))
     out = tmp_path / "sweep"
@@ -255,17 +236,19 @@ def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path]:
     )
     results = out / "results.sqlite"
     deadline = time.monotonic() + 120
+    stored = 0
     while time.monotonic() < deadline and process.poll() is None:
         if results.exists():
             try:
                 with sqlite3.connect(results, timeout=1) as db:
-                    if db.execute("SELECT COUNT(*) FROM evaluations").fetchone()[0] >= 3:
-                        break
+                    stored = db.execute("SELECT COUNT(*) FROM evaluations").fetchone()[0]
             except sqlite3.OperationalError:
-                pass
+                stored = 0
+            if stored >= 3:
+                break
         time.sleep(0.05)
     assert process.poll() is None, "the sweep ended before it could be signalled"
-    return command, process, out
+    return command, process, out, stored
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
@@ -279,7 +262,7 @@ def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resum
     lock free, and the same command resumes to the rows of an uninterrupted run."""
     from experiments.sweep.lock import sweep_lock
 
-    command, process, out = _start_sweep(tmp_path)
+    command, process, out, _ = _start_sweep(tmp_path)
     children = _children(process.pid)
     assert children  # the workers (and multiprocessing's resource tracker)
     if sig == signal.SIGINT:
@@ -304,7 +287,7 @@ def test_the_workers_of_a_sweep_whose_main_process_is_killed_with_sigkill_end(
     tmp_path: Path,
 ) -> None:
     """kill -9 of the main process alone: its workers re-parented to PID 1 used to stay."""
-    _, process, _ = _start_sweep(tmp_path)
+    _, process, _, _ = _start_sweep(tmp_path)
     children = _children(process.pid)
     assert children
     os.kill(process.pid, signal.SIGKILL)
