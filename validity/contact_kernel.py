@@ -402,8 +402,8 @@ def _depth_in(b: np.ndarray, nb: int, px: float, py: float) -> float:
 
 @njit(cache=True)
 def _add_axis_contact(world, n, b, nb, surface, contacts, nc) -> int:
-    """The contact of an overlap that no vertex explains (two corners passed each other, or
-    the part straddles a thin piece: no vertex of either shape is inside the other): along the
+    """The contact of an overlap deeper than any vertex of either shape lies inside the other
+    (two corners passed each other, or the part straddles a thin piece): along the
     separating axis of least penetration (the part's edges and the piece's surface edges), at
     the deepest vertex of the other shape, with the overlap as its depth."""
     best, side, axis = -np.inf, 0, -1
