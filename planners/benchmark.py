@@ -37,6 +37,7 @@ from ompl import base as ob
 from ompl import tools as ot
 
 from feeders.scene import Scene
+from planners.exclusive import one_at_a_time
 from planners.plan import PlannerSettings, control_problem, seed_ompl
 from planners.registry import make_planner
 
@@ -120,6 +121,7 @@ def _tree_size(planner, si) -> tuple[int, int]:
     return int(data.numVertices()), int(data.numEdges())
 
 
+@one_at_a_time
 def benchmark_problem(
     scene: Scene,
     level_name: str,

@@ -19,6 +19,7 @@ from ompl import util as ou
 
 from feeders.scene import Scene
 from planners.adapters import state_propagator, validity_checker
+from planners.exclusive import one_at_a_time
 from planners.goals import GoalBox
 from planners.projections import register_pose_projection
 from planners.registry import make_planner
@@ -184,6 +185,7 @@ def control_problem(
     return ControlProblem(ss=ss, si=si, level=level, goal=goal, read=read, counts=counts)
 
 
+@one_at_a_time
 def plan(
     scene: Scene,
     level_name: str = "geometric",
