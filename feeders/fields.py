@@ -80,7 +80,9 @@ def _breaks_lines(c: str) -> bool:
 
 def name_field(value: Any, field: str = "name") -> str:
     """``value`` as a name that can be part of a file name: a string of 1 to ``MAX_NAME``
-    characters, without '/', control characters or line separators, and not '.' or '..'."""
+    characters, without '/', control characters or line separators, not '.' or '..', and
+    without white space at either end (refused, not stripped: the name a user wrote is the
+    name of the sweep's directory and of OMPL's experiment)."""
     if not isinstance(value, (str, int, float)) or isinstance(value, bool):
         raise FieldError(f"{field}: expected a string, got {shown(repr(value))}")
     name = str(value)
@@ -90,6 +92,10 @@ def name_field(value: Any, field: str = "name") -> str:
         raise FieldError(
             f"{field} = {name!r}: a name cannot hold '/', control characters or line "
             "separators, or be '.' or '..'"
+        )
+    if name != name.strip():  # OMPL's log reader strips it: the name would change on its way
+        raise FieldError(
+            f"{field} = {shown(repr(name))}: a name cannot begin or end with white space"
         )
     return name
 
@@ -104,13 +110,23 @@ def mapping_field(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
     return value
 
 
+# What PyYAML's pure-Python parser quotes of the file in a problem ("found character '\\t'",
+# "found undefined tag handle '!x!'", "but found '#'"): the file may be any text at all.
+_QUOTED = re.compile(r" ?'[^']*'")
+
+
 def _yaml_problem(exc: yaml.YAMLError) -> str:
-    """PyYAML's error on one line: the problem and where it is."""
+    """PyYAML's error on one line: the problem and where it is (line and column), without
+    anything it quotes of the file (issue 23: /etc/shadow as a config had its text in the
+    error). A reader error (a character YAML refuses) says where by position."""
     problem = getattr(exc, "problem", None)
     mark = getattr(exc, "problem_mark", None)
     if problem and mark is not None:
-        return f"{problem} (line {mark.line + 1}, column {mark.column + 1})"
-    return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return f"{_QUOTED.sub('', problem)} (line {mark.line + 1}, column {mark.column + 1})"
+    first = _QUOTED.sub("", str(exc).splitlines()[0]) if str(exc) else type(exc).__name__
+    if isinstance(exc, yaml.reader.ReaderError):  # no line: where is the character's index
+        return f"{first} (character {exc.position + 1})"
+    return first
 
 
 MAX_DOCUMENT_BYTES = 1 << 20  # a scene or config is a few kilobytes; 1 MiB is generous
@@ -129,14 +145,15 @@ _LEADING_ZERO = re.compile(r"[-+]?0[0-9_]+")
 
 
 def _scalar_problem(event: yaml.ScalarEvent) -> str | None:
-    """Why a scalar is refused: an explicit tag, or a plain YAML 1.1 number that surprises."""
+    """Why a scalar is refused: an explicit tag, or a plain YAML 1.1 number that surprises;
+    said without quoting the scalar (the file may be any text: its line and column say where)."""
     if event.tag is not None and event.tag != "!":
-        return f"explicit tags ({event.tag}) are not allowed"
+        return "an explicit tag (!...) is not allowed"
     if not event.style:  # plain (None or '', by parser)
         if _SEXAGESIMAL.fullmatch(event.value):
-            return f"{event.value!r} is a sexagesimal (base 60) number in YAML 1.1; quote it"
+            return "a number with colons is sexagesimal (base 60) in YAML 1.1; quote it"
         if _LEADING_ZERO.fullmatch(event.value):
-            return f"{event.value!r} has a leading zero (octal in YAML 1.1); drop it or quote it"
+            return "a number with a leading zero is octal in YAML 1.1; drop the zero or quote it"
     return None
 
 
@@ -159,7 +176,7 @@ def _check_events(text: str) -> None:
             keys, at_key = mappings[-1]
             if at_key[0] and isinstance(event, yaml.ScalarEvent):
                 if event.value in keys:
-                    problem = f"repeated key {event.value!r}"
+                    problem = "a repeated key (the same key twice in one mapping)"
                 keys.add(event.value)
             at_key[0] = not at_key[0]
         if isinstance(event, yaml.AliasEvent):
@@ -170,7 +187,7 @@ def _check_events(text: str) -> None:
             if depth > MAX_DEPTH:
                 problem = f"nested deeper than {MAX_DEPTH} levels"
             elif event.tag is not None and problem is None:
-                problem = f"explicit tags ({event.tag}) are not allowed"
+                problem = "an explicit tag (!...) is not allowed"
             is_map = isinstance(event, yaml.MappingStartEvent)
             mappings.append((set(), [True]) if is_map else None)
         elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):

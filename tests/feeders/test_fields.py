@@ -256,3 +256,64 @@ def test_a_file_that_is_not_a_mapping_is_named_without_echoing_it(
     message = _error(path)
     assert "secret" not in message and "root:x" not in message
     assert "not-a-scene" in message and what in message and "mapping" in message
+
+
+# Lines of a shadow file and other text that is not YAML; "SECRET" marks what must never be
+# quoted in an error. Each breaks the parse (or a rule of ours) at a known line.
+SECRET_TEXTS = [
+    (
+        "root:$6$SECRETsalt$SECREThash:19000:0:99999:7:::\nuser:\t$6$SECRET2: 19000:0:99999:7:::\n",
+        2,
+    ),
+    ("root:$6$SECRETsalt:19000:0:99999:7:::\n\tSECRETtab: 1\n", 2),
+    ("SECRETkey: 1\nSECRETkey: 2\n", 2),  # a repeated key
+    ("a: 1\nb: !SECRETtag x\n", 2),  # an explicit local tag
+    ("a: !!SECRETtag x\n", 1),  # an explicit tag of YAML's own namespace
+    ("a: !SECRET!x 1\n", 1),  # an undefined tag handle
+    ('a: "\\qSECRETescape"\n', 1),  # an unknown escape
+    ("%YAML 1.1 SECRETdirective\na: 1\n", 1),
+    ("a: &SECRET# 1\n", 1),  # a bad anchor
+    ("a: 1\nb: SECRET: x: y\n", 2),
+    ("a: 12:30:45\n", 1),  # base 60 in YAML 1.1 (the value is the file's text too)
+    ("a: 0755\n", 1),  # octal in YAML 1.1
+]
+
+
+@pytest.mark.parametrize("parser", ["libyaml", "python"])
+@pytest.mark.parametrize(("text", "line"), SECRET_TEXTS)
+def test_a_file_that_is_not_yaml_is_named_with_its_line_never_quoted(
+    tmp_path: Path, monkeypatch, parser: str, text: str, line: int
+) -> None:
+    """Issue 23: a config that is /etc/shadow (or any non-YAML text) had its text in the error
+    (PyYAML's problem quotes the token it stopped at; ours quoted a repeated key or a tag).
+    The error names the file and the line, never a character of its content; with PyYAML's
+    pure-Python parser too (used where PyYAML was built without libyaml)."""
+    import yaml
+
+    if parser == "python":
+        monkeypatch.setattr("feeders.fields._PARSER", yaml.SafeLoader)
+    elif not yaml.__with_libyaml__:
+        pytest.skip("PyYAML without libyaml")
+    path = tmp_path / "shadow"
+    path.write_text(text)
+    message = _error(path)
+    assert "/shadow' is not valid YAML" in message and f"(line {line}, column" in message
+    said = message.split("is not valid YAML")[1]  # after the file's name
+    for secret in ("SECRET", "root", "$6$", "19000", "12:30", "0755", "\\t", "'#'", "'q'"):
+        assert secret not in said, message
+
+
+@pytest.mark.parametrize("value", [" lead", "trail ", "\u00a0nbsp", "en\u2002", "  ", "\u3000wide"])
+def test_a_name_with_space_at_either_end_is_refused_not_changed(value: str) -> None:
+    """Issue 23: a config name with a leading space was silently stripped on its way to OMPL's
+    database (its log reader strips the experiment name), so names differed from what the user
+    wrote. A name that begins or ends with white space is refused, naming the field."""
+    with pytest.raises(FieldError) as info:
+        name_field(value, "obstacles[0].label")
+    message = str(info.value)
+    assert message.startswith("obstacles[0].label") and "white space" in message
+    assert "\n" not in message
+
+
+def test_space_inside_a_name_is_kept() -> None:
+    assert name_field("my  sweep 2") == "my  sweep 2"

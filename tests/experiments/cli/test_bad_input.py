@@ -112,6 +112,55 @@ def test_a_fifo_or_device_as_config_is_refused_at_once(tmp_path: Path, capsys) -
         assert "not a regular file" in line
 
 
+SHADOW = (  # /etc/shadow's form; the tab and ': ' on the second line break YAML
+    "root:$6$SECRETsalt$SECREThashhash:19000:0:99999:7:::\n"
+    "operator:\t$6$SECRET2salt: 19000:0:99999:7:::\n"
+    "SECRETkey: 1\n"
+)
+
+
+@pytest.mark.parametrize(
+    ("text", "line"),
+    [
+        (SHADOW, 2),
+        ("SECRETkey: 1\nSECRETkey: 2\n", 2),  # a repeated key was quoted
+        ("name: !SECRETtag box\n", 1),  # so was a tag
+    ],
+)
+@pytest.mark.parametrize("command", ["run", "optimize", "plan", "stress"])
+def test_a_file_that_is_not_yaml_is_named_by_line_never_echoed(
+    tmp_path: Path, capsys, command: str, text: str, line: int
+) -> None:
+    """Issue 23: a config that is /etc/shadow (or any non-YAML text) had its text in the
+    error. Every file read as YAML (run and optimisation configs, scenes, stress cases) is
+    named with the line and column where it stops being YAML, and none of its text."""
+    path = tmp_path / "secrets"
+    path.write_text(text)
+    argv = {
+        "run": ["run", str(path), "--out", str(tmp_path / "out")],
+        "optimize": ["optimize", str(path), "--out", str(tmp_path / "out")],
+        "plan": ["plan", "--scene", str(path), "--time", "0.2"],
+        "stress": ["stress", "--replay", str(path)],
+    }[command]
+    said = _one_line_error(capsys, argv)
+    assert f"{path}' is not valid YAML" in said and f"(line {line}, column" in said
+    assert "SECRET" not in said and "$6$" not in said and "19000" not in said
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("name", [" corpus", "corpus ", "\u00a0corpus"])
+def test_a_name_with_space_at_an_end_is_refused_not_stripped(
+    tmp_path: Path, capsys, name: str
+) -> None:
+    """Issue 23: a config name with a leading space ran, and OMPL's log reader stripped it
+    (the sweep was recorded under another name than the one written). Refused, naming it."""
+    config = _config(tmp_path, with_value(BASE_CONFIG, "name", name))
+    out = tmp_path / "sweep"
+    said = _one_line_error(capsys, ["run", str(config), "--out", str(out), "--quiet"])
+    assert "cfg.yaml" in said and "name = " in said and "white space" in said
+    assert not out.exists()
+
+
 # -- scenes and designs --------------------------------------------------------------------
 
 
