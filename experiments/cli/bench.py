@@ -11,7 +11,7 @@ import json
 import sys
 from pathlib import Path
 
-from experiments.cli.usage import UsageError
+from experiments.cli.usage import UsageError, check_out_dir, check_seed
 
 SECTIONS = ("analytic", "speed", "feeder", "ladder")  # experiments.bench.suite.SECTIONS
 DETAIL_LEVELS = ("geometric", "kinematic")
@@ -32,7 +32,9 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
     bench.add_argument(
         "--repeats", type=int, default=None, help="timings per measurement (default 5; quick 2)"
     )
-    bench.add_argument("--seed", type=int, default=1)
+    bench.add_argument(
+        "--seed", type=int, default=1, help="seed of the workloads, in [1, 2^31 - 1] (default 1)"
+    )
     bench.add_argument(
         "--level",
         choices=DETAIL_LEVELS,
@@ -111,6 +113,7 @@ def _agreement(args: argparse.Namespace) -> int:
         )
     if not 1 <= args.workers <= 64:
         raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
+    check_out_dir(Path(args.out))
     from experiments.bench.peers import mujoco_engine, pymunk_engine
 
     for module in (mujoco_engine, pymunk_engine):
@@ -150,11 +153,14 @@ def _agreement(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Every argument is checked before any work or output (issue 23: an ``--out`` that could
+    not be written was refused only after a section had run and printed its progress)."""
     if args.agreement:
         return _agreement(args)
     repeats = args.repeats if args.repeats is not None else (2 if args.quick else 5)
     if not 1 <= repeats <= 1000:
         raise UsageError(f"--repeats = {repeats} is outside the allowed range [1, 1000]")
+    check_seed(args.seed)  # the workloads' NumPy seed and the ladder section's OMPL seed
     if args.level is not None:
         return _detail(args, repeats)
     from experiments.bench.suite import SuiteSettings, run_suite, sections_of, write_outputs
@@ -164,6 +170,7 @@ def run(args: argparse.Namespace) -> int:
         settings = SuiteSettings(args.quick, repeats, args.seed, tuple(sections_of(args.sections)))
     except ValueError as exc:
         raise UsageError(f"--sections: {exc}") from None
+    check_out_dir(Path(args.out))
     data = run_suite(settings, progress=lambda s: print(f"bench: {s} ...", file=sys.stderr))
     paths = write_outputs(data, Path(args.out))
     if args.json:
