@@ -15,7 +15,9 @@ and a bad argument answer at once; numba, OMPL and matplotlib load in the subcom
 
 SIGTERM is handled as Ctrl-C: a job stops, stores what is done, releases its lock and says so
 in one line (exit status 130); its workers ignore SIGINT and die with it
-(:mod:`experiments.worker_process`).
+(:mod:`experiments.worker_process`). Whatever a command ends with after such a signal is the
+interruption, one line and 130, not a traceback (:class:`_Stop`: an interrupt that lands in a
+ctypes callback, as during a numba compile, is swallowed there and delivered again).
 
 Exit status: 0 done (whether or not a plan was found: see the output), 2 bad input: one
 line on stderr, whether a subcommand found it (``UsageError``) or a reader or job below it did
@@ -25,12 +27,14 @@ traceback.
 
 from __future__ import annotations
 
+import _thread
 import argparse
 import signal
 import sys
+import threading
 from collections.abc import Sequence
-from types import ModuleType
-from typing import NoReturn
+from types import FrameType, ModuleType
+from typing import Any, NoReturn
 
 from experiments.cli.console import exit_now, set_ompl_logging
 from experiments.cli.errors import input_error_line, one_line
@@ -80,21 +84,80 @@ def run(argv: Sequence[str] | None = None) -> int:
     return 2
 
 
-def _terminate(signum: int, frame: object) -> NoReturn:
-    raise KeyboardInterrupt  # SIGTERM (kill, a service manager, SLURM) stops as Ctrl-C does
+REDELIVER_S = 0.01  # delay before an interrupt swallowed by a ctypes callback is raised again
+
+
+class _Stop:
+    """The signals that stop a command, for one process's life: SIGTERM always, SIGINT when it
+    is at Python's default (a command started in the background with SIGINT ignored keeps
+    ignoring it), each raising KeyboardInterrupt and remembered.
+
+    Remembered because a KeyboardInterrupt can land where it cannot propagate: inside a ctypes
+    callback (llvmlite's object-cache callback while numba compiles a kernel), where Python
+    prints "Exception ignored ..." with a traceback and carries on (issue 23: Ctrl-C in
+    ``bench --quick`` during a compile went on to numba's ``RuntimeError`` on its half-made
+    library, a 123-line traceback and exit 1). Such an interrupt is not printed but delivered
+    again from another thread (it runs in the main thread where Python code resumes), and an
+    exception that ends a command after a signal arrived is the interruption, not a bug."""
+
+    def __init__(self) -> None:
+        self.signum: int | None = None
+
+    def install(self) -> None:
+        signal.signal(signal.SIGTERM, self._handle)
+        if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            signal.signal(signal.SIGINT, self._handle)
+        sys.unraisablehook = self._unraisable
+
+    def _handle(self, signum: int, frame: FrameType | None) -> NoReturn:
+        self.signum = signum  # SIGTERM (kill, a service manager, SLURM) stops as Ctrl-C does
+        raise KeyboardInterrupt
+
+    def _unraisable(self, unraisable: Any) -> None:
+        """``sys.unraisablehook``: an interrupt that could not propagate is raised again, a
+        moment later, in the main thread; anything else is printed as Python would."""
+        try:
+            if self.signum is not None and issubclass(unraisable.exc_type, KeyboardInterrupt):
+                self._deliver_again()
+                return
+        except KeyboardInterrupt:  # the re-delivered one, landed in this hook: once more
+            self._deliver_again()
+            return
+        sys.__unraisablehook__(unraisable)
+
+    def _deliver_again(self) -> None:
+        assert self.signum is not None
+        timer = threading.Timer(REDELIVER_S, _thread.interrupt_main, args=(self.signum,))
+        timer.daemon = True
+        timer.start()
+
+    def quiet(self) -> None:
+        """Ignore further signals: the command has ended and says so (a second Ctrl-C while
+        the last line is printed must not add a traceback)."""
+        for signum in (signal.SIGTERM, signal.SIGINT):
+            if signal.getsignal(signum) == self._handle:
+                signal.signal(signum, signal.SIG_IGN)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    signal.signal(signal.SIGTERM, _terminate)
+    stop = _Stop()
+    stop.install()
     try:
-        code = run(argv)
-    except SystemExit as exc:  # argparse: --help, usage errors
-        code = exc.code if isinstance(exc.code, int) else 2
-    except BrokenPipeError:  # e.g. piped into `head`
-        code = 0
+        try:
+            code = run(argv)
+        except SystemExit as exc:  # argparse: --help, usage errors
+            code = exc.code if isinstance(exc.code, int) else 2
+        except BrokenPipeError:  # e.g. piped into `head`
+            code = 0
+        except Exception:
+            if stop.signum is None:
+                raise  # a bug: keep its traceback
+            raise KeyboardInterrupt from None  # what failed after a signal failed because of it
     except KeyboardInterrupt:
+        stop.quiet()
         print("partfeeder: interrupted", file=sys.stderr)
         code = 130
+    stop.quiet()
     exit_now(code)
 
 
