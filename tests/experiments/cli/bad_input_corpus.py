@@ -938,6 +938,60 @@ def control_cases() -> Iterator[Case]:
     )
 
 
+# -- issue 23, the small input findings (a block of its own: other additions go elsewhere) ----
+
+# /etc/shadow's form: the tab and ': ' on the second line break YAML; the file's text must
+# never be in the error (test_bad_input.py checks that; here: one clean line).
+SHADOW_TEXT = (
+    "root:$6$SECRETsalt$SECREThashhash:19000:0:99999:7:::\n"
+    "operator:\t$6$SECRET2salt: 19000:0:99999:7:::\n"
+)
+
+
+def small_input_cases() -> Iterator[Case]:
+    """Issue 23's small findings: non-YAML text as every kind of YAML file, seeds beyond
+    2^64 and empty level names on every command that takes them, bench's arguments that it
+    refused only after starting work, names with white space at an end."""
+    for label, text in (("shadow", SHADOW_TEXT), ("repeated-secret-key", "k: 1\nk: 2\n")):
+        files = (("f.yaml", text),)
+        yield Case("issue-23", f"config-{label}", _run_argv("f.yaml"), files)
+        yield Case("issue-23", f"scene-{label}", _plan_argv("f.yaml"), files)
+        yield Case("issue-23", f"optimize-{label}", _optimize_argv("f.yaml"), files)
+        yield Case("issue-23", f"stress-case-{label}", ("stress", "--replay", "f.yaml"), files)
+    big = str(2**64)
+    lines: list[tuple[str, tuple[str, ...]]] = [
+        ("stress-seed-2^64", ("stress", "--seed", big, "--cases", "1")),
+        ("stress-seed-negative", ("stress", "--seed", "-1", "--cases", "1")),
+        ("simulate-seed-2^64", ("simulate", "--samples", "5", "--seed", big)),
+        ("plan-seed-2^64", ("plan", "--seed", big, "--time", "0.2")),
+        (
+            "stress-levels-empty-name",
+            ("stress", "--levels", "geometric,,geometric", "--cases", "1"),
+        ),
+        ("stress-levels-twice", ("stress", "--levels", "geometric,geometric", "--cases", "1")),
+        ("feasibility-levels-empty-name", ("feasibility", "--levels", "geometric,,geometric")),
+        ("bench-out-a-file", ("bench", "--quick", "--out", "{dir}/file.txt")),
+        ("bench-out-under-a-file", ("bench", "--quick", "--out", "{dir}/file.txt/sub")),
+        ("bench-out-proc", ("bench", "--quick", "--out", "/proc/partfeeder-bench")),
+        ("bench-seed-negative", ("bench", "--quick", "--seed", "-1")),
+        ("bench-seed-2^64", ("bench", "--quick", "--seed", big, "--out", "{dir}/b")),
+        ("bench-level-seed-negative", ("bench", "--level", "geometric", "--seed", "-1")),
+    ]
+    for name, argv in lines:
+        yield Case("issue-23", name, argv, (("file.txt", "a file\n"),))
+    for name in (" corpus", "corpus ", "\u00a0corpus", "corpus\u3000"):
+        shown = name.replace("\u00a0", "<nbsp>").replace("\u3000", "<ideographic space>")
+        cfg = (("cfg.yaml", dump({**BASE_CONFIG, "name": name})),)
+        yield Case("issue-23", f"config-name-{shown!r}", _run_argv(), cfg)
+        opt = (("opt.yaml", dump({**BASE_OPTIMIZE, "name": name})),)
+        yield Case("issue-23", f"optimize-name-{shown!r}", _optimize_argv(), opt)
+        scene = (("scene.yaml", dump({**BASE_SCENE, "name": name})),)
+        yield Case("issue-23", f"scene-name-{shown!r}", _plan_argv(), scene)
+
+
+# -- end of issue 23's small findings ---------------------------------------------------------
+
+
 FAMILIES: dict[str, Callable[[], Iterator[Case]]] = {
     "documents": document_cases,
     "configs": config_cases,
@@ -949,6 +1003,7 @@ FAMILIES: dict[str, Callable[[], Iterator[Case]]] = {
     "database": database_cases,
     "lock": lock_cases,
     "optimize": optimize_cases,
+    "issue-23": small_input_cases,  # issue 23's small findings
     "controls": control_cases,
 }
 
