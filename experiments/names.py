@@ -31,7 +31,7 @@ PRESET_NAMES = (
     "fig9",
     "table3",
 )
-# Where a sweep's jobs run (experiments.sweep.executors): local processes or a Dask cluster.
+# Where a sweep's jobs run (experiments.executors): local processes or a Dask cluster.
 EXECUTOR_NAMES = ("local", "dask")
 # Derivative-free optimisers of ``partfeeder optimize`` (experiments.optimize.methods).
 OPTIMIZER_NAMES = ("differential-evolution", "cma-es", "nelder-mead", "powell")

@@ -32,7 +32,7 @@ INPUT_ERRORS = (
     ("experiments.sweep.results_db", "ResultsMismatch"),
     ("experiments.sweep.results_db", "ResultsDamaged"),
     ("experiments.sweep.lock", "DirectoryInUse"),
-    ("experiments.sweep.executors", "SchedulerUnreachable"),
+    ("experiments.executors.cluster", "SchedulerUnreachable"),
 )
 
 # errno of an OSError about a path the user gave or the machine it runs on, not our code.

@@ -120,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
     if args.executor == "dask":
         if not args.scheduler:
             raise UsageError("--executor dask needs --scheduler ADDRESS (tcp://host:port)")
-        from experiments.sweep.executors import check_scheduler
+        from experiments.executors.cluster import check_scheduler
 
         check_scheduler(args.scheduler)
     best = sweep_best_designs(args.sweep)

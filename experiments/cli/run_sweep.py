@@ -88,14 +88,14 @@ class _Bars:
 
 def _executor(args: argparse.Namespace) -> None:
     """``--executor`` and ``--scheduler`` agree, and a Dask scheduler answers (within about
-    2 s: :func:`experiments.sweep.executors.check_scheduler`), before anything is written."""
+    2 s: :func:`experiments.executors.cluster.check_scheduler`), before anything is written."""
     if args.executor != "dask":
         if args.scheduler is not None:
             raise UsageError("--scheduler is only for --executor dask")
         return
     if not args.scheduler:
         raise UsageError("--executor dask needs --scheduler ADDRESS (tcp://host:port)")
-    from experiments.sweep.executors import check_scheduler
+    from experiments.executors.cluster import check_scheduler
 
     check_scheduler(args.scheduler)
 

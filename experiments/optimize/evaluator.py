@@ -50,7 +50,7 @@ class Evaluator:
     """Answers optimisers' batches for one optimisation (one database, one pool)."""
 
     db: sqlite3.Connection
-    pool: Any  # experiments.sweep.executors.LocalPool or DaskPool, entered
+    pool: Any  # experiments.executors LocalPool or DaskPool, entered
     config: OptimizeConfig
     progress: Progress | None = None
     workers: int = 2

@@ -29,13 +29,13 @@ import numpy as np
 
 from experiments.drop.passive import eq10_objective, passive_drop
 from experiments.drop.verdict import Verdict, decide
+from experiments.executors import open_pool
 from experiments.optimize import store
 from experiments.optimize.config import OptimizeConfig
 from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
 from experiments.optimize.methods import METHODS, POPULATION_METHODS
 from experiments.optimize.objective import eq10_terms, trial_from_dict
 from experiments.proportions import wilson_interval
-from experiments.sweep.executors import open_pool
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignParameters, preset
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict

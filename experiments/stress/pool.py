@@ -1,20 +1,20 @@
-"""Run the cases of a seed in worker processes (spawn): each worker generates its own cases
-from ``(seed, index)`` and builds its own scenes and levels, so only indices go out and
-records come back. Results are in index order whatever the number of workers."""
+"""Run the cases of a seed in worker processes (the shared local pool,
+:mod:`experiments.executors.local`): each worker generates its own cases from
+``(seed, index)`` and builds its own scenes and levels, so only indices go out and records
+come back. Results are in index order whatever the number of workers."""
 
 from __future__ import annotations
 
-import multiprocessing
+import functools
 import sys
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from typing import Any
 
+from experiments.executors.local import map_jobs
 from experiments.stress.case import LEVEL_NAMES
 from experiments.stress.generate import generate_case
 from experiments.stress.runner import record_of
-from experiments.worker_process import start_plain_worker
 
 Result = tuple[dict[str, Any], float]
 CHUNK = 16  # cases per task: few round trips, a smooth progress bar
@@ -49,9 +49,7 @@ def run_one(seed: int, levels: tuple[str, ...], index: int) -> Result:
 
 
 def warm_up(levels: tuple[str, ...]) -> None:
-    """Start a worker (:func:`experiments.worker_process.start_worker`) and compile (or load)
-    every level's kernels in it, so no case's time counts them."""
-    start_plain_worker()
+    """Compile (or load) every level's kernels, so no case's time counts them."""
     for level in levels:
         record_of(generate_case(0, LEVEL_NAMES.index(level), LEVEL_NAMES))
 
@@ -71,26 +69,15 @@ def run_cases(
     """``(record, seconds)`` of cases 0 .. n_cases - 1 of ``seed``, in index order;
     ``progress(k)`` is called as each batch of k cases finishes."""
     chunks = [list(range(i, min(i + CHUNK, n_cases))) for i in range(0, n_cases, CHUNK)]
-    results: dict[int, list[Result]] = {}
-    if workers <= 1:
-        warm_up(levels)
-        for k, chunk in enumerate(chunks):
-            results[k] = run_chunk(seed, levels, chunk)
-            if progress:
-                progress(len(chunk))
-    else:
-        context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(
-            workers, mp_context=context, initializer=warm_up, initargs=(levels,)
-        ) as pool:
-            futures = {
-                pool.submit(run_chunk, seed, levels, chunk): k for k, chunk in enumerate(chunks)
-            }
-            for future in as_completed(futures):
-                results[futures[future]] = future.result()
-                if progress:
-                    progress(len(chunks[futures[future]]))
-    return [result for k in range(len(chunks)) for result in results[k]]
+    results = map_jobs(
+        functools.partial(run_chunk, seed, levels),
+        chunks,
+        workers,
+        on_result=None if progress is None else lambda k, _records: progress(len(chunks[k])),
+        warm_up=functools.partial(warm_up, levels),
+        ompl=False,
+    )
+    return [result for chunk in results for result in chunk]
 
 
 def progress_bar(total: int) -> tuple[Callable[[int], None] | None, Callable[[], None]]:

@@ -26,9 +26,10 @@ from typing import Any
 
 import numpy as np
 
+from experiments.executors.cluster import run_dask
+from experiments.executors.local import run_local
 from experiments.sweep import results_db
 from experiments.sweep.config import SweepConfig
-from experiments.sweep.executors import run_dask, run_local
 from experiments.sweep.job import SweepJob, evaluate_design, sweep_job
 from feeders.halton import halton_points
 

@@ -16,14 +16,12 @@ picture of the rows is :mod:`experiments.verdicts.feasibility_figure`.
 from __future__ import annotations
 
 import math
-import multiprocessing
 import time
 from collections.abc import Callable, Iterable, Sequence
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 
+from experiments.executors.local import map_jobs
 from experiments.proportions import wilson_interval
-from experiments.worker_process import start_worker
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.halton import halton_points
@@ -140,17 +138,16 @@ def compare_levels(
     """Verdicts of the first ``n`` Halton designs (``halton_points(n, seed)``) at each level.
 
     Every design x level is one job (:func:`design_verdict` with ``planner``, ``time_limit``
-    seconds per orientation and OMPL seed ``seed``). With ``workers`` > 1 the jobs run in a
-    ``ProcessPoolExecutor`` of that many processes (started with ``spawn``, since forking a
-    process that already runs threads, such as a progress bar's monitor or numba's pool, can
-    deadlock the child); with 1 they run here, one after the other.
+    seconds per orientation and OMPL seed ``seed``). With ``workers`` > 1 the jobs run in
+    the shared local pool of that many processes (:func:`experiments.executors.local.map_jobs`);
+    with 1 they run here, one after the other.
 
     Returns one row per job, ordered by design index, then by position in ``levels`` (rows carry
     ``index`` and ``slot`` = that position; a level may appear twice, e.g. to measure how
     often a level disagrees with itself). ``progress(row)`` is called in this process as each
     job finishes, in completion order: the place to show progress and to save rows as they
-    come, so that a failure later does not lose them. If a job raises, the jobs not yet
-    started are cancelled and the error is raised after the running ones end.
+    come, so that a failure later does not lose them. If a job fails, no job starts after it
+    and the error is raised once the running ones end.
 
     Reproducibility: the designs depend on ``seed`` only and each plan is seeded with ``seed``,
     so the same arguments give the same verdicts, whatever ``workers``. But the budget is
@@ -183,31 +180,12 @@ def compare_levels(
         for i in range(n)
         for slot, level in enumerate(levels)
     ]
-    rows: dict[tuple[int, int], dict] = {}
-
-    def finished(row: dict) -> None:
-        rows[(row["index"], row["slot"])] = row
-        if progress is not None:
-            progress(row)
-
-    if workers == 1:
-        for job in jobs:
-            finished(_job(job))
-    else:
-        context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(
-            max_workers=min(workers, len(jobs)), mp_context=context, initializer=start_worker
-        ) as pool:
-            pending = {pool.submit(_job, job) for job in jobs}
-            try:
-                while pending:
-                    done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                    for future in done:
-                        finished(future.result())
-            except BaseException:
-                pool.shutdown(wait=True, cancel_futures=True)
-                raise
-    return [rows[(job.index, job.slot)] for job in jobs]
+    return map_jobs(
+        _job,
+        jobs,
+        workers,
+        on_result=None if progress is None else lambda _index, row: progress(row),
+    )
 
 
 def _fraction(successes: int, trials: int) -> dict:

@@ -32,16 +32,16 @@ feeders and levels; ``spawn`` start, OMPL's log off).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
-import multiprocessing
 from collections.abc import Callable, Sequence
-from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from experiments.worker_process import quiet_ompl, start_worker
+from experiments.executors.local import LocalPool, map_jobs
+from experiments.executors.worker import quiet_ompl
 from feeders.design import PAPER_GEOMETRIC_VERDICT
 
 AXES = ("length", "width", "heavy_fraction", "friction")
@@ -362,29 +362,30 @@ def run_landscape(
     note = progress or (lambda _label, _n: None)
     if workers == 1:
         quiet_ompl()
-        return _landscape(grid, budget, points, _Inline(), note)
-    context = multiprocessing.get_context("spawn")  # no fork of a threaded parent
-    with ProcessPoolExecutor(workers, mp_context=context, initializer=start_worker) as pool:
+        return _landscape(grid, budget, points, None, note)
+    with LocalPool(workers, max_attempts=1) as pool:
         return _landscape(grid, budget, points, pool, note)
 
 
-class _Inline:
-    """A ``submit`` that runs the call at once (the one-process case of the pool)."""
-
-    def submit(self, fn: Callable[..., Any], *args: Any) -> Future:
-        future: Future = Future()
-        future.set_result(fn(*args))
-        return future
+def _with_budget(fn: Callable[[Any, Budget], dict], budget: Budget, item: Any) -> dict:
+    return fn(item, budget)
 
 
-def _gather(pool, fn, items: Sequence, budget: Budget, note, label: str) -> dict[Any, dict]:
+def _gather(
+    pool: LocalPool | None, fn, items: Sequence, budget: Budget, note, label: str
+) -> dict[Any, dict]:
+    """``{item: fn(item, budget)}`` on ``pool`` (None: here), with ``note`` as each ends."""
     note(label, len(items))
-    futures = {pool.submit(fn, item, budget): item for item in items}
-    out = {}
-    for future in as_completed(futures):
-        out[futures[future]] = future.result()
+    evaluate = functools.partial(_with_budget, fn, budget)
+
+    def ended(_index: int, _result: dict) -> None:
         note(label, 0)
-    return out
+
+    if pool is None:
+        results = map_jobs(evaluate, items, 1, on_result=ended)
+    else:
+        results = pool.map(evaluate, items, on_result=ended)
+    return dict(zip(items, results, strict=True))
 
 
 def _landscape(grid, budget, points, pool, note) -> Landscape:

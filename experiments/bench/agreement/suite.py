@@ -13,17 +13,16 @@ peer step (1e-4 s), restitution 0 in all. Drops are plain rows (:class:`DropRow`
 from __future__ import annotations
 
 import math
-import multiprocessing
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, field
 
 from experiments.bench.agreement.designs import NamedDesign
 from experiments.bench.agreement.drops import Drop, Peer, partfeeder_drop, peer_drop
 from experiments.drop.perturbations import Perturbations, draw
 from experiments.drop.verdict import UNBUILDABLE, entry_state, made_feeders
-from experiments.worker_process import start_plain_worker
+from experiments.executors.local import map_jobs
 from feeders.feeder import ORIENTATIONS, DegenerateDesign
 from feeders.scene import Scene
 from validity.dynamic import DEFAULT_STEP, DynamicLevel
@@ -184,22 +183,17 @@ def run_agreement(
     """Every trial of every design in every engine; (rows in design, trial order, wall time
     in s). ``workers`` > 1 runs trials in that many spawned processes."""
     jobs = [(d, i, settings) for d in designs for i in range(settings.trials)]
+    finished: Counter[str] = Counter()
+
+    def note(index: int, _rows: list[DropRow]) -> None:
+        name = jobs[index][0].name
+        finished[name] += 1
+        if progress and finished[name] == settings.trials:
+            progress(f"{name}: {settings.trials} trials done")
+
     t0 = time.perf_counter()
-    rows: list[DropRow] = []
-    if workers <= 1:
-        for k, job in enumerate(jobs):
-            rows += _job(job)
-            if progress and (k + 1) % settings.trials == 0:
-                progress(f"{job[0].name}: {settings.trials} trials done")
-    else:
-        context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(
-            workers, mp_context=context, initializer=start_plain_worker
-        ) as pool:
-            for k, result in enumerate(pool.map(_job, jobs)):
-                rows += result
-                if progress and (k + 1) % settings.trials == 0:
-                    progress(f"{jobs[k][0].name}: {settings.trials} trials done")
+    results = map_jobs(_job, jobs, workers, on_result=note, ompl=False)
+    rows = [row for trial in results for row in trial]
     return rows, time.perf_counter() - t0
 
 

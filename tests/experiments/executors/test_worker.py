@@ -18,9 +18,9 @@ PARENT = """
 import os, sys, time
 from concurrent.futures import ProcessPoolExecutor
 import multiprocessing
-from experiments.worker_process import start_plain_worker
+from experiments.executors.worker import start_worker
 pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"),
-                           initializer=start_plain_worker)
+                           initializer=start_worker, initargs=(False,))
 print(pool.submit(os.getpid).result(), flush=True)
 time.sleep(600)
 """

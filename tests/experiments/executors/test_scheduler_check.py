@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from experiments.sweep.executors import (
+from experiments.executors.cluster import (
     SCHEDULER_TIMEOUT_S,
     SchedulerUnreachable,
     check_scheduler,

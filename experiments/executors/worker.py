@@ -47,8 +47,3 @@ def start_worker(ompl: bool = True) -> None:
     ).start()
     if ompl:
         quiet_ompl()
-
-
-def start_plain_worker() -> None:
-    """:func:`start_worker` for workers that never touch OMPL (a picklable initializer)."""
-    start_worker(ompl=False)

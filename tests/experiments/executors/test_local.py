@@ -1,0 +1,49 @@
+"""The shared local pool every job runs on (issue 23: the sweep, the optimiser, stress and
+feasibility had pools of their own). References: the same calls made in one process."""
+
+from __future__ import annotations
+
+import signal
+
+import pytest
+from pool_jobs import die_on_three, fail_on_three, sigint_disposition, square
+
+from experiments.executors.local import JobFailed, LocalPool, map_jobs
+
+JOBS = list(range(12))
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_map_jobs_gives_the_results_in_job_order_and_reports_each_once(workers: int) -> None:
+    seen: list[tuple[int, int]] = []
+    got = map_jobs(square, JOBS, workers, on_result=lambda i, r: seen.append((i, r)))
+    assert got == [square(x) for x in JOBS]
+    assert sorted(seen) == list(enumerate(got))
+
+
+def test_a_pool_lives_across_maps() -> None:
+    with LocalPool(2) as pool:
+        assert pool.map(square, JOBS) == [x * x for x in JOBS]
+        assert pool.map(square, [5]) == [25]
+
+
+def test_a_job_that_raises_fails_the_map_naming_the_job_and_its_error() -> None:
+    with pytest.raises(JobFailed) as failed:
+        map_jobs(fail_on_three, JOBS, 2)
+    assert failed.value.index == 3
+    assert "ValueError: three is refused" in str(failed.value)
+
+
+def test_a_job_that_kills_its_worker_is_named_with_the_signal_after_its_attempts() -> None:
+    with pytest.raises(JobFailed) as failed:
+        map_jobs(die_on_three, JOBS, 2, max_attempts=2)
+    assert failed.value.index == 3
+    assert "died 2 times" in failed.value.reason and "SIGKILL" in failed.value.reason
+
+
+def test_pool_workers_ignore_sigint_and_the_calling_process_does_not() -> None:
+    """Ctrl-C is the parent's: workers ignore it, and running jobs here (one worker) must
+    not make the calling process ignore it."""
+    assert map_jobs(sigint_disposition, [0, 1], 2) == [True, True]
+    assert map_jobs(sigint_disposition, [0], 1, warm_up=lambda: None) == [False]
+    assert signal.getsignal(signal.SIGINT) != signal.SIG_IGN
