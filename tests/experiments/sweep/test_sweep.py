@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from process_table import all_gone, children_of, interruptible
 from sweep_fixtures import (
     CRASHING_DESIGN,
     crash_on_one_design,
@@ -189,40 +190,6 @@ def test_the_dask_executor_gives_the_results_of_the_local_one_for_any_worker_lay
     assert got == machine_independent_rows(reference / "results.sqlite")
 
 
-def _processes() -> dict[int, int]:
-    """Every live (not zombie) process and its parent, from the kernel's process table."""
-    table = {}
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/stat") as f:
-                    state, parent = f.read().rsplit(")", 1)[1].split()[:2]
-            except (FileNotFoundError, ProcessLookupError):
-                continue
-            if state != "Z":
-                table[int(entry)] = int(parent)
-    return table
-
-
-def _children(pid: int) -> set[int]:
-    return {p for p, parent in _processes().items() if parent == pid}
-
-
-def _gone(pids: set[int], within_s: float = 60.0) -> bool:
-    """Every one of ``pids`` has ended, looked at until ``within_s`` (a bound for a loaded
-    machine; the workers look for their parent every 0.5 s)."""
-    deadline = time.monotonic() + within_s
-    while time.monotonic() < deadline:
-        if not pids & set(_processes()):
-            return True
-        time.sleep(0.1)
-    return False
-
-
-def _interruptible() -> None:
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path, int]:
     """A sweep of the tiny config in a session of its own, returned (command, process, out
     directory, evaluations stored) once it has stored at least 3 evaluations."""
@@ -239,7 +206,7 @@ def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path, int
         text=True,
         # as from a terminal: a test runner started in the background inherits SIGINT
         # ignored, and Python then never turns Ctrl-C into KeyboardInterrupt
-        preexec_fn=_interruptible,
+        preexec_fn=interruptible,
     )
     results = out / "results.sqlite"
     deadline = time.monotonic() + 120
@@ -270,7 +237,7 @@ def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resum
     from experiments.sweep.lock import sweep_lock
 
     command, process, out, _ = _start_sweep(tmp_path)
-    children = _children(process.pid)
+    children = children_of(process.pid)
     assert children  # the workers (and multiprocessing's resource tracker)
     if sig == signal.SIGINT:
         os.killpg(process.pid, sig)  # Ctrl-C reaches the whole group
@@ -279,7 +246,7 @@ def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resum
     _, err = process.communicate(timeout=120)
     assert process.returncode == 130, err
     assert err.count("\n") == 1 and "interrupted" in err
-    assert _gone(children)
+    assert all_gone(children)
     with sweep_lock(out):
         pass
     again = subprocess.run(command, capture_output=True, text=True, timeout=300)
@@ -295,8 +262,8 @@ def test_the_workers_of_a_sweep_whose_main_process_is_killed_with_sigkill_end(
 ) -> None:
     """kill -9 of the main process alone: its workers re-parented to PID 1 used to stay."""
     _, process, _, _ = _start_sweep(tmp_path)
-    children = _children(process.pid)
+    children = children_of(process.pid)
     assert children
     os.kill(process.pid, signal.SIGKILL)
     process.wait()
-    assert _gone(children)
+    assert all_gone(children)
