@@ -2,6 +2,11 @@
 gets before it is opened for writing (the sweep's, the optimiser's): a file damaged, truncated
 or of another program is refused, with nothing written to it, instead of being extended.
 
+Every read of such a database (the check, a report, ``optimize --from``) goes through
+:func:`open_read_only`: a connection that cannot write and creates no file beside the
+database, so a refused file is left byte for byte as it was and a finished sweep can be read
+in a directory this process may not write.
+
 A database kind is given by its schema (``CREATE TABLE IF NOT EXISTS`` statements), the tables
 a newer version added (an older database without them is still ours: ``connect`` creates
 them), and a check of the stored rows (what its writer can never have written).
@@ -13,11 +18,51 @@ import sqlite3
 import stat
 from collections.abc import Callable, Collection
 from pathlib import Path
+from urllib.parse import quote
 
 SQLITE_HEADER = b"SQLite format 3\x00"
 FULL_CHECK_BYTES = 256 << 20  # ``integrity_check`` up to this size, ``quick_check`` above
 
 ContentCheck = Callable[[sqlite3.Connection], "str | None"]
+
+
+def read_only_uri(path: str | Path) -> str:
+    """The SQLite URI that opens ``path`` for reading only, writing and creating nothing.
+
+    SQLite's ``mode=ro`` alone is not enough for a WAL database (ours are): a reader needs
+    the ``-shm`` wal-index, and SQLite creates it and an empty ``-wal`` beside the database
+    when they are missing (and leaves them: a read-only connection cannot checkpoint), or, in
+    a directory it may not write, fails with "attempt to write a readonly database". So:
+
+    - no ``-wal`` beside the file: ``immutable=1`` (read the file as it is, without locks or
+      wal-index). A WAL database has a ``-wal`` from the moment a connection uses it until
+      the last one closes; without it no connection is using the database: nothing sits in
+      a WAL to be missed, and nobody is writing, which ``immutable`` requires. This is a
+      finished sweep or optimisation, a copied or archived one, a damaged file being checked.
+    - a ``-wal`` beside it: a writer is running (a sweep still going) or was killed with
+      commits left in its WAL: plain ``mode=ro``, which reads them through the existing
+      ``-shm`` (SQLite >= 3.22 reads even when that file is read-only) and locks like any
+      reader, so a report reads safely while the sweep writes.
+
+    A writer starting after the open, while the reader still reads, is not seen (the
+    immutable reader reads on as if the file did not change); :func:`check_file` detects it
+    and checks again. The path is percent-quoted (a '?' or '#' in it is a file name)."""
+    path = Path(path)
+    uri = f"file:{quote(str(path.absolute()), safe='/')}?mode=ro"
+    if not path.with_name(path.name + "-wal").exists():
+        uri += "&immutable=1"
+    return uri
+
+
+def open_read_only(path: str | Path, timeout: float = 30.0) -> sqlite3.Connection:
+    """A connection to ``path`` that cannot write and creates nothing (:func:`read_only_uri`)."""
+    return sqlite3.connect(read_only_uri(path), uri=True, timeout=timeout)
+
+
+def _state(path: Path) -> tuple[int, int, bool]:
+    """What changes when a writer starts on ``path``: size, modification time, a ``-wal``."""
+    info = path.stat()
+    return info.st_size, info.st_mtime_ns, path.with_name(path.name + "-wal").exists()
 
 
 def table_columns(db: sqlite3.Connection) -> dict[str, list[str]]:
@@ -103,23 +148,47 @@ def check_file(
     if problem:
         raise damaged(path, problem)
     check = "integrity_check" if size <= FULL_CHECK_BYTES else "quick_check"
-    columns: dict[str, list[str]] = {}
-    try:
-        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
+    found: tuple[list[str], dict[str, list[str]]] | sqlite3.DatabaseError
+    for _ in range(2):
+        before = _state(path)
         try:
-            rows = [r[0] for r in db.execute(f"PRAGMA {check}(1)")]
-            if rows == ["ok"]:
-                columns = table_columns(db)
-                if is_ours(columns, schema, added_later) and content_problem is not None:
-                    content = content_problem(db)
-                    if content:
-                        rows = [content]
-        finally:
-            db.close()
-    except sqlite3.DatabaseError as exc:
-        raise damaged(path, f"cannot be read ({exc})") from None
+            found = _read_check(path, check, schema, added_later, content_problem)
+        except sqlite3.DatabaseError as exc:
+            found = exc
+        if before[2] or _state(path) == before:
+            break
+        # read as immutable, but a writer started meanwhile: check again, through its WAL
+    if isinstance(found, sqlite3.DatabaseError):
+        raise damaged(path, f"cannot be read ({found})")
+    rows, columns = found
     if rows != ["ok"]:
-        raise damaged(path, f"is damaged (SQLite's {check}: {rows[0] if rows else 'no answer'})")
+        raise damaged(path, f"is damaged ({rows[0] if rows else 'no answer'})")
     if columns and not is_ours(columns, schema, added_later):
         raise damaged(path, f"has tables that are not a partfeeder {what}'s")
     return bool(columns)
+
+
+def _read_check(
+    path: Path,
+    check: str,
+    schema: str,
+    added_later: Collection[str],
+    content_problem: ContentCheck | None,
+) -> tuple[list[str], dict[str, list[str]]]:
+    """SQLite's ``check`` of ``path`` (its rows, prefixed with the check's name unless
+    ``["ok"]``), then, if it is sound and ours, ``content_problem``'s answer in its place;
+    and the tables' columns. Read through :func:`open_read_only`."""
+    columns: dict[str, list[str]] = {}
+    db = open_read_only(path)
+    try:
+        rows = [r[0] for r in db.execute(f"PRAGMA {check}(1)")]
+        if rows != ["ok"]:
+            return [f"SQLite's {check}: {rows[0] if rows else 'no answer'}"], columns
+        columns = table_columns(db)
+        if is_ours(columns, schema, added_later) and content_problem is not None:
+            content = content_problem(db)
+            if content:
+                rows = [content]
+    finally:
+        db.close()
+    return rows, columns

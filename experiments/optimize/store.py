@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from experiments.database_file import check_file
+from experiments.database_file import check_file, open_read_only
 from feeders.design import PARAMETER_NAMES
 
 _SCHEMA = """
@@ -127,13 +127,14 @@ def check_store(path: str | Path) -> bool:
 
 def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
     """Open an optimisation database (created if missing, unless ``readonly``), after
-    :func:`check_store` has found it sound."""
+    :func:`check_store` has found it sound; ``readonly`` writes and creates nothing
+    (:func:`experiments.database_file.open_read_only`)."""
     path = Path(path)
     ours = check_store(path)
     if readonly:
         if not ours:
             raise _damaged(path, "holds no evaluations")
-        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
+        db = open_read_only(path)
     else:
         path.parent.mkdir(parents=True, exist_ok=True)
         db = sqlite3.connect(path, timeout=30.0)

@@ -34,7 +34,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from experiments.database_file import check_file, table_columns
+from experiments.database_file import check_file, open_read_only, table_columns
 from feeders.design import PARAMETER_NAMES
 
 STATUSES = ("feasible", "infeasible", "degenerate")
@@ -209,7 +209,10 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
             continue
         if db.execute(f"SELECT 1 FROM {table} WHERE {condition} LIMIT 1").fetchone():
             return f"{table}: a row holds a value this program never writes"
-    texts = {  # every text column but the logs (most of the file; only export_ompl reads them)
+    bad_log = _log_problem(db)
+    if bad_log:
+        return bad_log
+    texts = {  # every other text column
         "evaluations": "level, status, reason, worker",
         "runs": "level, orientation, planner",
         "quarantine": "level, reason",
@@ -223,6 +226,29 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
                 pass
         except sqlite3.OperationalError as exc:  # text that is not UTF-8
             return f"{table}: {exc}"
+    return None
+
+
+def _log_problem(db: sqlite3.Connection) -> str | None:
+    """The first stored OMPL log that is not UTF-8 text (garbage inside its record), named
+    by its design, level and entry orientation. ``ompl/benchmark.db``, what Planner Arena
+    opens, is made from these logs (``export_ompl``): a report that passed over a damaged
+    one would say all is well while that database cannot be made. Reading them costs about
+    what ``integrity_check`` already spends on their pages."""
+    db.text_factory = bytes
+    try:
+        rows = db.execute("SELECT design_id, level, orientation, log FROM ompl_logs")
+        for design_id, level, orientation, log in rows:
+            try:
+                log.decode("utf-8")
+            except UnicodeDecodeError:
+                return (
+                    f"ompl_logs: the OMPL log of design {design_id}, level "
+                    f"{level.decode('utf-8', 'replace')}, "
+                    f"{orientation.decode('utf-8', 'replace')} is not UTF-8 text"
+                )
+    finally:
+        db.text_factory = str
     return None
 
 
@@ -243,7 +269,9 @@ def check_database(path: str | Path) -> bool:
 
 def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
     """Open a results database (created if missing, unless ``readonly``), after
-    :func:`check_database` has found it sound."""
+    :func:`check_database` has found it sound. ``readonly`` opens it with
+    :func:`experiments.database_file.open_read_only`: nothing is written or created beside
+    it, so a finished sweep is read in a directory this process may not write."""
     path = Path(path)
     ours = check_database(path)
     if readonly:
@@ -251,7 +279,7 @@ def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
             raise FileNotFoundError(f"no results database at '{path}'")
         if not ours:
             raise _damaged(path, "holds no partfeeder results (it is empty)")
-        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=30.0)
+        db = open_read_only(path)
     else:
         path.parent.mkdir(parents=True, exist_ok=True)
         db = sqlite3.connect(path, timeout=30.0)
