@@ -15,7 +15,7 @@ and a bad argument answer at once; numba, OMPL and matplotlib load in the subcom
 
 SIGTERM is handled as Ctrl-C: a job stops, stores what is done, releases its lock and says so
 in one line (exit status 130); its workers ignore SIGINT and die with it
-(:mod:`experiments.worker_process`). Whatever a command ends with after such a signal is the
+(:mod:`experiments.executors.worker`). Whatever a command ends with after such a signal is the
 interruption, one line and 130, not a traceback (:class:`_Stop`: an interrupt that lands in a
 ctypes callback, as during a numba compile, is swallowed there and delivered again).
 
