@@ -20,6 +20,7 @@ from __future__ import annotations
 import contextlib
 import io
 import sqlite3
+import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -145,8 +146,6 @@ def export_ompl(results: str | Path, out_dir: str | Path) -> Path:
     them with OMPL's own ``ompl_benchmark_statistics`` reader (made anew: a resumed sweep's
     database has each experiment once). The design parameters, level, orientation and seed
     are columns of its ``experiments`` table."""
-    from ompl import _benchmark_statistics as obs
-
     out = Path(out_dir)
     logs = out / "logs"
     logs.mkdir(parents=True, exist_ok=True)
@@ -165,7 +164,36 @@ def export_ompl(results: str | Path, out_dir: str | Path) -> Path:
         db.close()
     target = out / "benchmark.db"
     target.unlink(missing_ok=True)
+    try:
+        _read_logs(target, paths)
+    except Exception:
+        target.unlink(missing_ok=True)
+        raise _unreadable_log(results, paths) from None
+    return target
+
+
+def _read_logs(target: Path, paths: list[str]) -> None:
+    """OMPL's reader: ``paths`` into the database ``target``, with its views."""
+    from ompl import _benchmark_statistics as obs
+
     with contextlib.redirect_stdout(io.StringIO()):  # it prints a line per file
         obs.readBenchmarkLog(str(target), paths, False)
         obs.computeViews(str(target), False)
-    return target
+
+
+def _unreadable_log(results: str | Path, paths: list[str]) -> Exception:
+    """OMPL's reader failed on the logs together: the first that it cannot read alone, named
+    as the database check names a damaged row (the check reads text, not OMPL's format)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, path in enumerate(paths):
+            try:
+                _read_logs(Path(tmp) / f"{k}.db", [path])
+            except Exception as exc:
+                design, level, orientation = Path(path).stem.split("-", 2)
+                return results_db.damaged(
+                    results,
+                    f"is damaged: the OMPL log of design {int(design.removeprefix('design'))}, "
+                    f"level {level}, {orientation} is not a log OMPL's reader can read "
+                    f"({type(exc).__name__})",
+                )
+    return RuntimeError("OMPL's reader failed on the logs together, and on none alone")

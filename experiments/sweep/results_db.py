@@ -128,7 +128,8 @@ class ResultsDamaged(ValueError):
     """The file is not a sound results database: damaged, truncated or of another schema."""
 
 
-def _damaged(path: Path, problem: str) -> ResultsDamaged:
+def damaged(path: str | Path, problem: str) -> ResultsDamaged:
+    """The error for the results database at ``path`` refused for ``problem``."""
     return ResultsDamaged(
         f"results database '{path}' {problem}; nothing was written to it: move it aside "
         "(or delete it) and run the same command again to redo the sweep"
@@ -260,7 +261,7 @@ def check_database(path: str | Path) -> bool:
     return check_file(
         path,
         _SCHEMA,
-        _damaged,
+        damaged,
         "results database",
         added_later={"verdicts"},
         content_problem=_content_problem,
@@ -278,7 +279,7 @@ def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
         if not path.exists():
             raise FileNotFoundError(f"no results database at '{path}'")
         if not ours:
-            raise _damaged(path, "holds no partfeeder results (it is empty)")
+            raise damaged(path, "holds no partfeeder results (it is empty)")
         db = open_read_only(path)
     else:
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import re
 import signal
 import sqlite3
 import subprocess
@@ -113,6 +114,43 @@ def test_the_ompl_database_opens_with_ompls_reader_and_has_the_design_parameters
     ours = results.execute("SELECT SUM(propagations), SUM(solved) FROM runs").fetchone()
     theirs = db.execute("SELECT SUM(propagations), SUM(exact_solution) FROM runs").fetchone()
     assert tuple(theirs) == tuple(ours)
+
+
+@pytest.mark.parametrize(
+    "garble",
+    [
+        lambda log: re.sub(
+            r"(?m)^\d+ properties for each run$", "many properties for each run", log
+        ),
+        lambda log: "",
+    ],
+    ids=["a-count-garbled", "emptied"],
+)
+def test_a_stored_ompl_log_that_ompls_reader_cannot_read_is_named(
+    reference: Path, tmp_path: Path, garble
+) -> None:
+    """Issue 23: a stored log that is text but not a log (a count garbled, emptied) passed the
+    database check, then OMPL's reader ended ``run`` in a traceback at the export."""
+    import shutil
+
+    from experiments.sweep.results_db import ResultsDamaged
+
+    results = tmp_path / "results.sqlite"
+    shutil.copy(reference / "results.sqlite", results)
+    with sqlite3.connect(results) as db:
+        design, level, orientation, log = db.execute(
+            "SELECT design_id, level, orientation, log FROM ompl_logs "
+            "ORDER BY design_id DESC, level, orientation LIMIT 1"
+        ).fetchone()
+        db.execute(
+            "UPDATE ompl_logs SET log = ? WHERE design_id = ? AND level = ? AND orientation = ?",
+            (garble(log), design, level, orientation),
+        )
+    with pytest.raises(ResultsDamaged) as damaged:
+        export_ompl(results, tmp_path / "ompl")
+    message = str(damaged.value)
+    assert f"design {design}, level {level}, {orientation}" in message
+    assert "\n" not in message
 
 
 def test_the_summary_counts_add_up(reference: Path) -> None:
