@@ -157,6 +157,12 @@ def export_ompl(results: str | Path, out_dir: str | Path) -> Path:
             "ORDER BY design_id, level, orientation"
         )
         for row in rows:
+            if _unclosed_block(row["log"]):
+                raise results_db.damaged(
+                    results,
+                    f"is damaged: the OMPL log of design {row['design_id']}, level "
+                    f"{row['level']}, {row['orientation']} ends inside a <<<| |>>> block",
+                )
             p = logs / f"design{row['design_id']:06d}-{row['level']}-{row['orientation']}.log"
             p.write_text(row["log"])
             paths.append(str(p))
@@ -170,6 +176,18 @@ def export_ompl(results: str | Path, out_dir: str | Path) -> Path:
         target.unlink(missing_ok=True)
         raise _unreadable_log(results, paths) from None
     return target
+
+
+def _unclosed_block(log: str) -> bool:
+    """A ``<<<|`` line with no ``|>>>`` line after it: OMPL's reader (ompl 2.0) loops forever
+    on such a log, looking for the end of the block past the end of the file."""
+    open_block = False
+    for line in log.splitlines():
+        if line.startswith("<<<|"):
+            open_block = True
+        elif line.startswith("|>>>"):
+            open_block = False
+    return open_block
 
 
 def _read_logs(target: Path, paths: list[str]) -> None:
