@@ -4,30 +4,17 @@ beside it. Compared by name, bytes and modification time of every file in its di
 
 from __future__ import annotations
 
-import hashlib
 import os
 import sqlite3
 from pathlib import Path
 
 import pytest
+from file_state import directory_state
 
 from experiments.optimize import store
 
 KEY_VALUES = [0.25 * i for i in range(12)]
 TRIAL_MARKER = "marker-inside-the-trial-data"
-
-
-def directory_state(directory: Path) -> dict[str, tuple[str, int, int]]:
-    """Every file under ``directory``: its SHA-256, size and modification time (ns)."""
-    return {
-        str(p.relative_to(directory)): (
-            hashlib.sha256(p.read_bytes()).hexdigest(),
-            p.stat().st_size,
-            p.stat().st_mtime_ns,
-        )
-        for p in sorted(directory.rglob("*"))
-        if p.is_file()
-    }
 
 
 def evaluations_database(directory: Path) -> Path:

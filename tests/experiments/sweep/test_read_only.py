@@ -14,7 +14,6 @@ none."""
 
 from __future__ import annotations
 
-import hashlib
 import os
 import shutil
 import stat
@@ -24,6 +23,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
+from file_state import directory_state
 from sweep_fixtures import TINY, fake_result, fake_verdict
 
 from experiments.cli import run
@@ -31,19 +31,6 @@ from experiments.cli.optimize import sweep_best_designs
 from experiments.sweep import results_db
 from experiments.sweep.config import config_from_dict
 from feeders.halton import halton_points
-
-
-def directory_state(directory: Path) -> dict[str, tuple[str, int, int]]:
-    """Every file under ``directory``: its SHA-256, size and modification time (ns)."""
-    return {
-        str(p.relative_to(directory)): (
-            hashlib.sha256(p.read_bytes()).hexdigest(),
-            p.stat().st_size,
-            p.stat().st_mtime_ns,
-        )
-        for p in sorted(directory.rglob("*"))
-        if p.is_file()
-    }
 
 
 def finished_sweep(directory: Path) -> Path:

@@ -4,12 +4,12 @@ files it refuses are in ``tests/experiments/cli/test_bad_input.py`` and the corp
 
 from __future__ import annotations
 
-import hashlib
 import os
 import sqlite3
 from pathlib import Path
 
 import pytest
+from file_state import directory_state
 from sweep_fixtures import fake_result, tiny_config
 
 from experiments.cli import run
@@ -45,19 +45,6 @@ def test_a_database_killed_before_it_was_claimed_is_resumed(tmp_path: Path) -> N
 MARKER = "marker-of-the-stored-config"
 LOG_MARKER = "marker-inside-the-stored-log"
 LOG = f"OMPL version 2.0.1\nExperiment {LOG_MARKER}\n1 planners\n.\n"
-
-
-def directory_state(directory: Path) -> dict[str, tuple[str, int, int]]:
-    """Every file under ``directory``: its SHA-256, size and modification time (ns)."""
-    return {
-        str(p.relative_to(directory)): (
-            hashlib.sha256(p.read_bytes()).hexdigest(),
-            p.stat().st_size,
-            p.stat().st_mtime_ns,
-        )
-        for p in sorted(directory.rglob("*"))
-        if p.is_file()
-    }
 
 
 def overwrite(path: Path, marker: str, garbage: bytes) -> None:
