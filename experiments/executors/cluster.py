@@ -2,7 +2,8 @@
 :class:`experiments.executors.local.LocalPool`, so a run gives the same results on either for
 the same seed (with budgets in propagations; a time budget depends on the machine), whatever
 the workers' processes and threads (planning takes turns within a process:
-:mod:`planners.exclusive`). Results come back to the calling process."""
+:mod:`planners.exclusive`; each worker is prepared by :mod:`.dask_plugin`). Results come
+back to the calling process."""
 
 from __future__ import annotations
 
@@ -10,7 +11,6 @@ from collections.abc import Iterable
 from typing import Any
 
 from experiments.executors.local import Evaluate, Job, OnDone, OnQuarantine, error_text
-from experiments.executors.worker import quiet_ompl
 
 SCHEDULER_TIMEOUT_S = 2.0  # to reach the scheduler and hear it answer
 
@@ -110,7 +110,9 @@ class DaskPool:
             ) from None
         check_scheduler(self.scheduler)
         self._client = Client(self.scheduler, set_as_default=False, timeout=10)
-        self._client.run(quiet_ompl)
+        from experiments.executors.dask_plugin import PlanningWorker
+
+        self._client.register_plugin(PlanningWorker())
         return self
 
     def __exit__(self, *exc: object) -> None:
