@@ -80,6 +80,13 @@ def run_seed(sweep_seed: int, design_id: int, rung: int) -> int:
     return int(state % (2**31 - 1000))
 
 
+def problem_name(sweep: str, design_id: int, level: str, orientation: str) -> str:
+    """The OMPL experiment (Planner Arena's problem) of one design at one level from one
+    entry, as one word: OMPL's log reader keeps only the last whitespace-separated word of a
+    log's experiment line (a name's inner spaces become '_')."""
+    return "/".join(("_".join(sweep.split()), f"design-{design_id}", level, orientation))
+
+
 def verdict_seed(sweep_seed: int, design_id: int) -> int:
     """The seed of a design's passive verdict: from the sweep's seed and the design only (not
     the rung), so a design's verdict is the same whatever the ladder's order."""
@@ -197,7 +204,7 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
             int(job["runs"]),
             budget,
             seed,
-            experiment=f"{job['name']}: design {design_id}, {level}, {orientation}",
+            experiment=problem_name(job["name"], design_id, level, orientation),
             parameters={**parameters, "orientation": orientation},
             settings=PlannerSettings(**job["planner"]),
         )

@@ -116,6 +116,20 @@ def test_the_ompl_database_opens_with_ompls_reader_and_has_the_design_parameters
     assert tuple(theirs) == tuple(ours)
 
 
+def test_each_design_level_and_entry_is_its_own_problem_in_planner_arena(
+    reference: Path, tmp_path: Path
+) -> None:
+    """Issue 22: OMPL's reader keeps the last whitespace-separated word of a log's experiment
+    line, so every design and level of a sweep was pooled under 'heavy_leading' and
+    'heavy_trailing'. Reference: OMPL's own reader's ``experiments`` table."""
+    target = export_ompl(reference / "results.sqlite", tmp_path / "ompl")
+    db = sqlite3.connect(target)
+    rows = db.execute("SELECT name, design_id, level, orientation FROM experiments").fetchall()
+    assert len({name for name, *_ in rows}) == len(rows)
+    for name, design_id, level, orientation in rows:
+        assert name == f"tiny/design-{int(design_id)}/{level}/{orientation}"
+
+
 @pytest.mark.parametrize(
     "garble",
     [
