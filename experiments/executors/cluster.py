@@ -103,6 +103,8 @@ class DaskPool:
     def __enter__(self) -> DaskPool:
         try:
             from distributed import Client
+
+            from experiments.executors.dask_plugin import PlanningWorker
         except ImportError:
             raise RuntimeError(
                 "the dask executor needs Dask's distributed scheduler: "
@@ -110,8 +112,6 @@ class DaskPool:
             ) from None
         check_scheduler(self.scheduler)
         self._client = Client(self.scheduler, set_as_default=False, timeout=10)
-        from experiments.executors.dask_plugin import PlanningWorker
-
         self._client.register_plugin(PlanningWorker())
         return self
 
