@@ -1,6 +1,10 @@
 """``partfeeder feasibility``: the fraction of N Halton designs feasible at one level against
 another on the same designs and budgets (is the first level's feasible set a subset?).
 
+The budget per orientation is wall-clock seconds (``--time``) or, machine-independent, a count
+of propagations (``--propagations``; ``--time`` is then a cap, 600 s unless given, as a
+sweep's ``budget: {propagations: N}``), whose verdicts do not depend on the machine's load.
+
 Rows are written as jobs finish (JSON lines), then as JSON and CSV with a figure and a summary.
 """
 
@@ -16,6 +20,9 @@ from experiments.names import LEVEL_NAMES, PLANNER_NAMES
 
 MAX_DESIGNS = 1_000_000  # as a sweep's designs.count
 MAX_WORKERS = 1024  # as a sweep's workers
+MAX_PROPAGATIONS = 10**9  # as a sweep's budget.propagations
+DEFAULT_TIME_S = 1.0  # the wall-clock budget without --propagations
+CAP_TIME_S = 600.0  # the cap with --propagations, as a sweep's
 
 
 def add_arguments(feas: argparse.ArgumentParser) -> None:
@@ -32,7 +39,18 @@ def add_arguments(feas: argparse.ArgumentParser) -> None:
         "--planner", default="rrt", help=f"OMPL planner ({', '.join(sorted(PLANNER_NAMES))})"
     )
     feas.add_argument(
-        "--time", type=float, default=1.0, help="planning budget per orientation (s, wall clock)"
+        "--time",
+        type=float,
+        default=None,
+        help=f"planning budget per orientation (s, wall clock; default {DEFAULT_TIME_S:g}); "
+        f"with --propagations only a cap (default {CAP_TIME_S:g})",
+    )
+    feas.add_argument(
+        "--propagations",
+        type=int,
+        default=None,
+        help="planning budget per orientation in propagations (machine-independent: the "
+        "verdicts are the same on any machine and under any load)",
     )
     feas.add_argument("--seed", type=int, default=1, help="seed of the Halton designs and of OMPL")
     feas.add_argument(
@@ -68,11 +86,28 @@ def _options(args: argparse.Namespace) -> tuple[list[str], int]:
         raise UsageError(
             f"--planner '{args.planner}' is unknown; planners: {', '.join(sorted(PLANNER_NAMES))}"
         )
-    check_time(args.time)
+    if args.time is not None:
+        check_time(args.time)
+    if args.propagations is not None:
+        check_count(args.propagations, "--propagations", MAX_PROPAGATIONS)
     check_seed(args.seed)
     workers = args.workers if args.workers is not None else (os.cpu_count() or 1)
     check_count(workers, "--workers", MAX_WORKERS)
     return levels, workers
+
+
+def _time_limit(args: argparse.Namespace) -> float:
+    """The wall-clock seconds per orientation: the budget, or the cap with --propagations."""
+    if args.time is not None:
+        return float(args.time)
+    return DEFAULT_TIME_S if args.propagations is None else CAP_TIME_S
+
+
+def _budget(settings: dict) -> str:
+    """The budget as the summary line says it."""
+    if settings.get("propagations") is None:
+        return f"{settings['time_s']:g} s"
+    return f"{settings['propagations']} propagations (cap {settings['time_s']:g} s)"
 
 
 def _report(summary: dict) -> str:
@@ -84,7 +119,7 @@ def _report(summary: dict) -> str:
     label_b = f"{b} (run 2)" if a == b else b
     lines = [
         f"{s['designs']} Halton designs (seed {s['seed']}) | planner {s['planner']} | "
-        f"{s['time_s']:g} s per orientation | {s['workers']} workers | "
+        f"{_budget(s)} per orientation | {s['workers']} workers | "
         f"{summary['wall_time_s']:.1f} s",
         f"{'level':<22}{'feasible':>10}{'fraction':>10}{'95% CI (Wilson)':>20}",
     ]
@@ -132,10 +167,12 @@ def run(args: argparse.Namespace) -> int:
 
     levels, workers = _options(args)
     out = out_dir(args.out)
-    if workers > (os.cpu_count() or 1):
+    time_limit = _time_limit(args)
+    if workers > (os.cpu_count() or 1) and args.propagations is None:
         print(
             f"partfeeder feasibility: note: --workers {workers} > {os.cpu_count()} CPUs; the "
-            "budgets are wall-clock time, so busy workers may flip borderline verdicts",
+            "budgets are wall-clock time, so busy workers may flip borderline verdicts "
+            "(a budget in --propagations does not)",
             file=sys.stderr,
         )
     stream = None
@@ -159,10 +196,11 @@ def run(args: argparse.Namespace) -> int:
                 args.designs,
                 levels,
                 planner=args.planner,
-                time_limit=args.time,
+                time_limit=time_limit,
                 seed=args.seed,
                 workers=workers,
                 progress=progress,
+                propagations=args.propagations,
             )
     except BaseException:
         if stream is not None:
@@ -191,7 +229,8 @@ def run(args: argparse.Namespace) -> int:
             "levels": levels,
             "designs": args.designs,
             "planner": args.planner,
-            "time_s": args.time,
+            "time_s": time_limit,
+            "propagations": args.propagations,
             "seed": args.seed,
             "workers": workers,
         },

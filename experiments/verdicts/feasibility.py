@@ -7,10 +7,12 @@ adding a model of motion only removes designs (a kinematically feasible design m
 geometrically feasible, up to the planner's failures within its budget).
 
 A design is *feasible at a level* when the planner reaches the goal from both entry
-orientations within its time budget each. Everything here passes plain data (lists, dicts,
-numbers, a :class:`FeasibilityJob` per design x level): OMPL objects cannot be pickled, so
-each job builds its own scene and planner, which lets jobs run in worker processes. The
-picture of the rows is :mod:`experiments.verdicts.feasibility_figure`.
+orientations within its budget each: wall-clock seconds, or, machine-independent, a count of
+the planner's propagations (then the verdicts are the same on any machine and under any load).
+Everything here passes plain data (lists, dicts, numbers, a :class:`FeasibilityJob` per
+design x level): OMPL objects cannot be pickled, so each job builds its own scene and planner,
+which lets jobs run in worker processes. The picture of the rows is
+:mod:`experiments.verdicts.feasibility_figure`.
 """
 
 from __future__ import annotations
@@ -45,21 +47,30 @@ def _check_planner(planner: str) -> None:
 
 
 def design_verdict(
-    values: Sequence[float], level: str, planner: str, time_limit: float, seed: int
+    values: Sequence[float],
+    level: str,
+    planner: str,
+    time_limit: float,
+    seed: int,
+    propagations: int | None = None,
 ) -> dict:
     """Is the design with these 12 values feasible at ``level``? One plain-data row.
 
     The design is built from ``values`` (order of ``PARAMETER_NAMES``) and planned with
     ``planner`` from the heavy-leading entry, then the heavy-trailing one, each within
-    ``time_limit`` seconds of OMPL wall-clock time and seeded by ``seed``. It is feasible when
-    both are solved; if the first is not, the second is not run (``ran`` is False for it and
-    its numbers are None), since the verdict is already known. A design that cannot be built
-    (:class:`DegenerateDesign`) is infeasible at every level; its ``reason`` says why.
+    ``time_limit`` seconds of OMPL wall-clock time and, when ``propagations`` is given, within
+    that many propagations (``time_limit`` is then only a cap), seeded by ``seed``. It is
+    feasible when both are solved; if the first is not, the second is not run (``ran`` is
+    False for it and its numbers are None), since the verdict is already known. A design that
+    cannot be built (:class:`DegenerateDesign`) is infeasible at every level; its ``reason``
+    says why.
 
     Returns a dict: ``values`` (list of 12 floats), ``level``, ``planner``, ``time_limit_s``,
-    ``seed``, ``built``, ``reason`` (None when built), ``orientations`` (per entry: ``ran``,
-    ``solved``, ``time_s`` = planning time, ``tree_size`` = states in the tree), ``feasible``
-    and ``wall_time_s`` (everything, including building the scene and the level).
+    ``propagations`` (the budget, None for wall-clock only), ``seed``, ``built``, ``reason``
+    (None when built), ``orientations`` (per entry: ``ran``, ``solved``, ``time_s`` = planning
+    time, ``tree_size`` = states in the tree, ``propagations`` = made, None without a
+    propagation budget), ``feasible`` and ``wall_time_s`` (everything, including building the
+    scene and the level).
 
     Raises ValueError for an unknown level or planner (before building anything, so a
     degenerate design cannot hide a typo) and DesignError for unphysical values.
@@ -75,11 +86,18 @@ def design_verdict(
         "level": level,
         "planner": planner,
         "time_limit_s": float(time_limit),
+        "propagations": None if propagations is None else int(propagations),
         "seed": int(seed),
         "built": True,
         "reason": None,
         "orientations": {
-            o: {"ran": False, "solved": None, "time_s": None, "tree_size": None}
+            o: {
+                "ran": False,
+                "solved": None,
+                "time_s": None,
+                "tree_size": None,
+                "propagations": None,
+            }
             for o in ORIENTATIONS
         },
         "feasible": False,
@@ -92,12 +110,15 @@ def design_verdict(
     else:
         feasible = True
         for orientation in ORIENTATIONS:
-            result = plan(scene, level, planner, orientation, time_limit, seed)
+            result = plan(
+                scene, level, planner, orientation, time_limit, seed, propagations=propagations
+            )
             row["orientations"][orientation] = {
                 "ran": True,
                 "solved": bool(result.solved),
                 "time_s": float(result.time),
                 "tree_size": int(result.tree_size),
+                "propagations": result.propagations,
             }
             if not result.solved:
                 feasible = False
@@ -116,13 +137,16 @@ class FeasibilityJob:
     values: tuple[float, ...]  # the 12 parameters, order of PARAMETER_NAMES
     level: str
     planner: str
-    time_limit: float  # s per orientation
+    time_limit: float  # s per orientation (a cap when ``propagations`` is set)
     seed: int
+    propagations: int | None = None  # per orientation; None: the budget is wall-clock
 
 
 def _job(job: FeasibilityJob) -> dict:
     """One design x level, as run in a worker: the verdict tagged with where it belongs."""
-    row = design_verdict(list(job.values), job.level, job.planner, job.time_limit, job.seed)
+    row = design_verdict(
+        list(job.values), job.level, job.planner, job.time_limit, job.seed, job.propagations
+    )
     return {"index": job.index, "slot": job.slot, **row}
 
 
@@ -134,13 +158,14 @@ def compare_levels(
     seed: int = 1,
     workers: int = 1,
     progress: Callable[[dict], object] | None = None,
+    propagations: int | None = None,
 ) -> list[dict]:
     """Verdicts of the first ``n`` Halton designs (``halton_points(n, seed)``) at each level.
 
     Every design x level is one job (:func:`design_verdict` with ``planner``, ``time_limit``
-    seconds per orientation and OMPL seed ``seed``). With ``workers`` > 1 the jobs run in
-    the shared local pool of that many processes (:func:`experiments.executors.local.map_jobs`);
-    with 1 they run here, one after the other.
+    seconds and, when given, ``propagations`` per orientation, and OMPL seed ``seed``). With
+    ``workers`` > 1 the jobs run in the shared local pool of that many processes
+    (:func:`experiments.executors.local.map_jobs`); with 1 they run here, one after the other.
 
     Returns one row per job, ordered by design index, then by position in ``levels`` (rows carry
     ``index`` and ``slot`` = that position; a level may appear twice, e.g. to measure how
@@ -150,10 +175,11 @@ def compare_levels(
     and the error is raised once the running ones end.
 
     Reproducibility: the designs depend on ``seed`` only and each plan is seeded with ``seed``,
-    so the same arguments give the same verdicts, whatever ``workers``. But the budget is
-    wall-clock time: a design solved near the end of its budget may flip when the machine is
-    slower or busier (more workers than cores, other load), so borderline verdicts are
-    reproducible only on an equally loaded machine.
+    so with a budget in ``propagations`` the same arguments give the same verdicts on any
+    machine, under any load and whatever ``workers`` (as long as ``time_limit``, then a cap,
+    is not reached first). With a wall-clock budget only, a design solved near the end of its
+    budget may flip when the machine is slower or busier (more workers than cores, other
+    load), so borderline verdicts are reproducible only on an equally loaded machine.
     """
     if n < 1:
         raise ValueError(f"number of designs n = {n} must be >= 1")
@@ -163,6 +189,8 @@ def compare_levels(
         raise ValueError(f"workers = {workers} must be >= 1")
     if not (time_limit > 0.0 and math.isfinite(time_limit)):
         raise ValueError(f"time_limit = {time_limit} s must be a positive number")
+    if propagations is not None and propagations < 1:
+        raise ValueError(f"propagations = {propagations} must be >= 1")
     for level in levels:
         _check_level(level)
     _check_planner(planner)
@@ -176,6 +204,7 @@ def compare_levels(
             planner,
             float(time_limit),
             int(seed),
+            None if propagations is None else int(propagations),
         )
         for i in range(n)
         for slot, level in enumerate(levels)
@@ -268,8 +297,10 @@ def agreement(rows: Iterable[dict], a: str, b: str) -> dict:
 
 def csv_header() -> list[str]:
     """Columns of :func:`csv_record`: the row's scalars, the design values, per-entry numbers."""
-    per_entry = [f"{o}_{k}" for o in ORIENTATIONS for k in ("ran", "solved", "time_s", "tree_size")]
-    scalars = ["index", "slot", "level", "planner", "time_limit_s", "seed", "built", "reason"]
+    entry = ("ran", "solved", "time_s", "tree_size", "propagations")
+    per_entry = [f"{o}_{k}" for o in ORIENTATIONS for k in entry]
+    scalars = ["index", "slot", "level", "planner", "time_limit_s", "propagations", "seed"]
+    scalars += ["built", "reason"]
     return [*scalars, "feasible", "wall_time_s", *PARAMETER_NAMES, *per_entry]
 
 
