@@ -13,10 +13,13 @@ not do are added here, without changing what it measures:
   duration of the solution's controls (the time the part takes to leave, Eq. 10). OMPL drops
   properties added in a post-run event, so they are collected in the wrapper and the
   post-run event and appended to the log as run properties (Planner Arena shows them);
-- the wrapped planner's tree: OMPL cannot call a Python override of ``getPlannerData``, so the
-  wrapper's "graph states" and "graph motions" are replaced by its inner planner's. The
-  wrapper's name is the inner planner's ("RRT", "KPIECE1", "EST"); its settings are not in
-  the log's "common properties" (OMPL reads them from the planner it holds, the wrapper).
+- the wrapped planner's tree and parameters: OMPL cannot call a Python override of
+  ``getPlannerData`` or ``params``, so the wrapper's "graph states" and "graph motions" are
+  replaced by its inner planner's, and the inner planner's parameters (``goal_bias``,
+  KPIECE1's ``border_fraction`` ...) are added to the log's "common properties", which OMPL
+  filled from the wrapper (space information settings only): Planner Arena's
+  ``plannerConfigs`` then holds them. The wrapper's name is the inner planner's ("RRT",
+  "KPIECE1", "EST", or a researcher's own planner's ``getName()``).
 
 Every run is seeded (OMPL's generator and the goal sampler) with ``seed + run``, so planner A's
 run r and planner B's run r start from the same seed, and the same arguments give the same
@@ -28,18 +31,20 @@ from __future__ import annotations
 import math
 import re
 import tempfile
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TypeAlias
 
 import numpy as np
 from ompl import base as ob
+from ompl import control as oc
 from ompl import tools as ot
 
 from feeders.scene import Scene
 from planners.exclusive import one_at_a_time
-from planners.plan import PlannerSettings, control_problem, seed_ompl
-from planners.registry import make_planner
+from planners.plan import ControlProblem, PlannerSettings, control_problem, seed_ompl
+from planners.registry import PLANNERS, make_planner
 
 MEMORY_LIMIT_MB = 4096.0  # OMPL's per-run memory limit; far above what a control tree needs
 
@@ -96,6 +101,7 @@ class _Counted(ob.Planner):
         self.counts = counts
         self.budget = budget
         self.spent = [0, 0]
+        self.settings: dict[str, str] = {}  # the inner planner's parameters, once set up
 
     def clear(self) -> None:
         super().clear()
@@ -104,6 +110,7 @@ class _Counted(ob.Planner):
     def solve(self, ptc):
         self.inner.setProblemDefinition(self.getProblemDefinition())
         self.inner.setup()
+        self.settings = planner_parameters(self.inner)
         start = list(self.counts)
         if self.budget is not None:
             stop_at = start[1] + self.budget
@@ -115,10 +122,41 @@ class _Counted(ob.Planner):
             self.spent = [self.counts[0] - start[0], self.counts[1] - start[1]]
 
 
+def planner_parameters(planner: ob.Planner) -> dict[str, str]:
+    """The parameters ``planner`` declares (OMPL's ``params()``, e.g. RRT's ``goal_bias`` and
+    ``intermediate_states``) with their values as OMPL prints them. ``params()`` itself has no
+    Python binding in OMPL 2; ``printSettings()`` lists the same, one ``name = value`` a line."""
+    pairs = (line.split(" = ", 1) for line in planner.printSettings().splitlines()[1:])
+    return {p[0].strip(): p[1].strip() for p in pairs if len(p) == 2}
+
+
 def _tree_size(planner, si) -> tuple[int, int]:
     data = ob.PlannerData(si)
     planner.inner.getPlannerData(data)
     return int(data.numVertices()), int(data.numEdges())
+
+
+PlannerFactory: TypeAlias = Callable[[oc.SpaceInformation], ob.Planner]
+"""A researcher's own planner: called with the problem's space information, it returns any
+OMPL control planner (``lambda si: oc.RRT(si)`` with a changed goal bias, or a Python
+subclass of ``ob.Planner``)."""
+
+PlannerSpec: TypeAlias = str | PlannerFactory
+"""A planner by name (``planners.registry.PLANNERS``: rrt, kpiece, est) or by factory."""
+
+
+def _make_planner(spec: PlannerSpec, si: oc.SpaceInformation) -> ob.Planner:
+    if isinstance(spec, str):
+        return make_planner(spec, si)
+    if not callable(spec):
+        raise TypeError(
+            f"planner {spec!r} is neither a name ({', '.join(PLANNERS)}) nor a factory "
+            "si -> ob.Planner"
+        )
+    planner = spec(si)
+    if not isinstance(planner, ob.Planner):
+        raise TypeError(f"planner factory returned {type(planner).__name__}, not an ob.Planner")
+    return planner
 
 
 @one_at_a_time
@@ -126,7 +164,7 @@ def benchmark_problem(
     scene: Scene,
     level_name: str,
     orientation: str,
-    planners: Sequence[str],
+    planners: Sequence[PlannerSpec],
     runs: int,
     budget: Budget,
     seed: int,
@@ -134,30 +172,96 @@ def benchmark_problem(
     parameters: Mapping[str, float | int | str] | None = None,
     settings: PlannerSettings | None = None,
 ) -> BenchmarkResult:
-    """Benchmark ``planners`` (names in ``planners.registry.PLANNERS``) on the problem of
-    reaching the scene's goal from entry ``orientation`` at level ``level_name``, ``runs`` runs
-    each.
+    """Benchmark ``planners`` on the problem of reaching the scene's goal from entry
+    ``orientation`` at level ``level_name``, ``runs`` runs each: the problem of
+    :func:`planners.plan.control_problem` (seeded by ``seed``, with ``settings``) through
+    :func:`benchmark_control_problem`, which says what the arguments mean.
 
-    ``parameters`` become the experiment's parameters in OMPL's log (REAL for floats,
-    INTEGER for ints, STRING otherwise), and so columns of Planner Arena's ``experiments``
-    table.
+    >>> from feeders.design import PRESETS
+    >>> from feeders.feeder import build_feeder
+    >>> from ompl import control as oc
+    >>> def rrt_greedy(si):
+    ...     planner = oc.RRT(si)
+    ...     planner.setGoalBias(0.2)
+    ...     return planner
+    >>> scene = build_feeder(PRESETS["table3"], name="table3")
+    >>> result = benchmark_problem(scene, "geometric", "heavy_leading", ["kpiece", rrt_greedy],
+    ...                            runs=2, budget=Budget(10.0, 2000), seed=1, experiment="demo")
+    >>> [(r["planner"], r["run"]) for r in result.runs]
+    [('KPIECE1', 0), ('KPIECE1', 1), ('RRT', 0), ('RRT', 1)]
+    """
+    problem = control_problem(
+        scene, level_name, orientation, seed, settings or PlannerSettings(), count=True
+    )
+    return benchmark_control_problem(problem, planners, runs, budget, seed, experiment, parameters)
+
+
+@one_at_a_time
+def benchmark_control_problem(
+    problem: ControlProblem,
+    planners: Sequence[PlannerSpec],
+    runs: int,
+    budget: Budget,
+    seed: int,
+    experiment: str,
+    parameters: Mapping[str, float | int | str] | None = None,
+) -> BenchmarkResult:
+    """Benchmark ``planners`` on an already built ``problem`` (from
+    :func:`planners.plan.control_problem` with ``count=True``, changed as the user likes:
+    another propagation step, control durations, start), ``runs`` runs each, every run
+    within ``budget``.
+
+    ``planners``: names in ``planners.registry.PLANNERS`` or factories ``si -> ob.Planner``
+    (:data:`PlannerFactory`). A planner is logged under its own ``getName()`` (OMPL's log says
+    ``control_RRT``), its own parameters (``goal_bias``, KPIECE1's ``border_fraction`` ...,
+    as it is set up for the problem) beside the space information's in the log's planner
+    configuration; two planners of one name are refused (``planner.setName`` tells them
+    apart). Run ``r`` of every planner is seeded with ``seed + r``. ``experiment`` is the
+    log's experiment name (Planner Arena's problem: one word, as OMPL's reader keeps only
+    the last). ``parameters`` become the experiment's parameters in OMPL's log (REAL for
+    floats, INTEGER for ints, STRING otherwise), and so columns of Planner Arena's
+    ``experiments`` table.
+
+    >>> from feeders.design import PRESETS
+    >>> from feeders.feeder import build_feeder
+    >>> from planners.plan import control_problem
+    >>> scene = build_feeder(PRESETS["table3"], name="table3")
+    >>> problem = control_problem(scene, "geometric", "heavy_leading", seed=1, count=True)
+    >>> problem.si.setMinMaxControlDuration(1, 10)
+    >>> result = benchmark_control_problem(problem, ["rrt", "est"], runs=2,
+    ...                                    budget=Budget(10.0, 2000), seed=1, experiment="demo")
+    >>> len(result.runs), "max_control_duration = 10" in result.log
+    (4, True)
     """
     if runs < 1:
         raise ValueError(f"runs = {runs} must be >= 1")
     if not planners:
         raise ValueError("need at least one planner")
-    settings = settings or PlannerSettings()
-    problem = control_problem(scene, level_name, orientation, seed, settings, count=True)
+    if problem.counts is None:
+        raise ValueError(
+            "problem has no counts of propagations: build it with control_problem(..., count=True)"
+        )
     ss, si, level, counts = problem.ss, problem.si, problem.level, problem.counts
-    assert counts is not None
-    # Compile (or load from cache) the level's kernels before OMPL starts its clock.
-    start = level.state_of_pose(scene.start(orientation))
-    level.is_valid(start)
-    level.propagate(start, np.zeros(level.control_dim), settings.step)
+    # Compile (or load from cache) the level's kernels before OMPL starts its clock, at the
+    # goal's centre (ProblemDefinition.getStartState would hand the start to Python, which
+    # frees it: OMPL then reads freed memory).
+    goal = problem.goal.goal
+    pose = (0.5 * (goal.x_min + goal.x_max), 0.5 * (goal.y_min + goal.y_max), goal.yaw)
+    state = level.state_of_pose(pose)
+    level.is_valid(state)
+    level.propagate(state, np.zeros(level.control_dim), si.getPropagationStepSize())
 
     bench = ot.Benchmark(ss, experiment)
-    for name in planners:
-        bench.addPlanner(_Counted(si, make_planner(name, si), counts, budget.propagations))
+    wrapped: list[_Counted] = []
+    for spec in planners:
+        inner = _make_planner(spec, si)
+        name = inner.getName()
+        if any(w.getName() == name for w in wrapped):
+            raise ValueError(
+                f"two planners named '{name}': give one another name (planner.setName)"
+            )
+        wrapped.append(_Counted(si, inner, counts, budget.propagations))
+        bench.addPlanner(wrapped[-1])
     for key, value in (parameters or {}).items():
         kind = "INTEGER" if isinstance(value, (int, np.integer)) else "REAL"
         if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
@@ -212,13 +316,10 @@ def benchmark_problem(
         text = path.read_text()
     log = _augment_log(
         text,
-        [[r for r in rows if r["planner"] == p] for p in _planner_names(rows)],
+        [[r for r in rows if r["planner"] == w.getName()] for w in wrapped],
+        [w.settings for w in wrapped],
     )
     return BenchmarkResult(log=log, runs=rows)
-
-
-def _planner_names(rows: list[dict]) -> list[str]:
-    return list(dict.fromkeys(r["planner"] for r in rows))
 
 
 def _format(value: float | int | bool) -> str:
@@ -229,14 +330,27 @@ def _format(value: float | int | bool) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def _augment_log(log: str, per_planner: list[list[dict]]) -> str:
-    """Append :data:`EXTRA_PROPERTIES` to each planner's run properties in OMPL's log and
-    put the inner planner's tree size in "graph states" and "graph motions"."""
+def _augment_log(log: str, per_planner: list[list[dict]], parameters: list[dict[str, str]]) -> str:
+    """Add each planner's own ``parameters`` to its common properties in OMPL's log (sorted
+    by name, as OMPL writes them; a name OMPL wrote stays as written), append
+    :data:`EXTRA_PROPERTIES` to its run properties and put the inner planner's tree size in
+    "graph states" and "graph motions"."""
     lines = log.splitlines()
     out: list[str] = []
-    i = planner = 0
+    i = planner = configured = 0
     header = re.compile(r"^(\d+) properties for each run$")
+    common = re.compile(r"^(\d+) common properties$")
     while i < len(lines):
+        shared = common.match(lines[i])
+        if shared:
+            count = int(shared.group(1))
+            pairs = [line.split(" = ", 1) for line in lines[i + 1 : i + 1 + count]]
+            merged = {**parameters[configured], **{p[0]: p[-1] for p in pairs}}
+            out.append(f"{len(merged)} common properties")
+            out.extend(f"{name} = {value}" for name, value in sorted(merged.items()))
+            i += 1 + count
+            configured += 1
+            continue
         match = header.match(lines[i])
         if not match:
             out.append(lines[i])

@@ -4,6 +4,7 @@ properties in OMPL's log, and a log that OMPL's own reader accepts."""
 from __future__ import annotations
 
 import contextlib
+import doctest
 import functools
 import io
 import math
@@ -11,11 +12,13 @@ import sqlite3
 
 import pytest
 from ompl import _benchmark_statistics as obs
+from ompl import base as ob
+from ompl import control as oc
 
 from feeders.design import PRESETS
 from feeders.feeder import build_feeder
-from planners.benchmark import Budget, benchmark_problem
-from planners.plan import PlannerSettings
+from planners.benchmark import Budget, benchmark_control_problem, benchmark_problem
+from planners.plan import PlannerSettings, control_problem
 
 
 @functools.cache
@@ -121,3 +124,119 @@ def test_nothing_is_written_to_the_working_directory(tmp_path, monkeypatch) -> N
     monkeypatch.chdir(tmp_path)
     _bench(Budget(0.1), planners=("rrt",), runs=1)
     assert list(tmp_path.iterdir()) == []
+
+
+def _rrt_with_goal_bias(si: oc.SpaceInformation) -> ob.Planner:
+    planner = oc.RRT(si)
+    planner.setGoalBias(0.2)
+    return planner
+
+
+class _Delegating(ob.Planner):
+    """A researcher's own planner written in Python: here it hands the search to KPIECE1."""
+
+    def __init__(self, si: oc.SpaceInformation) -> None:
+        super().__init__(si, "MyPlanner")
+        self.inner = oc.KPIECE1(si)
+
+    def setup(self) -> None:
+        super().setup()
+        self.inner.setProblemDefinition(self.getProblemDefinition())
+        self.inner.setup()
+
+    def clear(self) -> None:
+        super().clear()
+        self.inner.clear()
+
+    def solve(self, ptc):
+        return self.inner.solve(ptc)
+
+    def getPlannerData(self, data) -> None:
+        self.inner.getPlannerData(data)
+
+
+def _read_db(tmp_path, log: str) -> sqlite3.Connection:
+    path = tmp_path / "run.log"
+    path.write_text(log)
+    db_path = tmp_path / "bench.db"
+    db_path.unlink(missing_ok=True)
+    with contextlib.redirect_stdout(io.StringIO()):
+        obs.readBenchmarkLog(str(db_path), [str(path)], False)
+    return sqlite3.connect(db_path)
+
+
+def _settings(db: sqlite3.Connection) -> dict[str, dict[str, str]]:
+    """plannerConfigs as {planner name: {parameter: value}} (OMPL's reader stores a planner's
+    common properties as 'name = value\\n;' pairs)."""
+    out: dict[str, dict[str, str]] = {}
+    for name, settings in db.execute("SELECT name, settings FROM plannerConfigs"):
+        pairs = [p.strip().split(" = ", 1) for p in settings.split(";") if p.strip()]
+        out[name] = dict(pairs)
+    return out
+
+
+def test_planners_may_be_factories_named_in_the_log_by_their_own_name(tmp_path) -> None:
+    result = _bench(Budget(60.0, 1500), planners=(_rrt_with_goal_bias, _Delegating, "est"))
+    assert [r["planner"] for r in result.runs] == ["RRT"] * 2 + ["MyPlanner"] * 2 + ["EST"] * 2
+    db = _read_db(tmp_path, result.log)
+    assert set(_settings(db)) == {"control_RRT", "control_MyPlanner", "control_EST"}
+    # the Python planner searched: its tree is its inner KPIECE1's
+    assert all(r["tree_size"] > 2 for r in result.runs if r["planner"] == "MyPlanner")
+
+
+def test_the_planners_own_parameters_are_in_plannerconfigs_with_their_values(tmp_path) -> None:
+    result = _bench(Budget(60.0, 600), planners=(_rrt_with_goal_bias, "kpiece", "est"), runs=1)
+    settings = _settings(_read_db(tmp_path, result.log))
+    rrt, kpiece, est = (settings[f"control_{n}"] for n in ("RRT", "KPIECE1", "EST"))
+    assert float(rrt["goal_bias"]) == 0.2  # the factory's, not RRT's default 0.05
+    assert rrt["intermediate_states"] == "0"
+    assert float(kpiece["goal_bias"]) == 0.05
+    assert float(kpiece["border_fraction"]) == 0.8
+    assert int(kpiece["max_close_samples"]) == 30
+    assert float(kpiece["bad_score_factor"]) == 0.45
+    assert float(kpiece["good_score_factor"]) == 0.9
+    # EST's range as set up for this space (0 until setup), as OMPL's own Benchmark logs it
+    assert float(est["range"]) > 0
+    # the space information's settings stay beside them
+    for planner in (rrt, kpiece, est):
+        assert float(planner["propagation_step_size"]) == PlannerSettings().step
+
+
+def test_two_planners_of_one_name_are_refused() -> None:
+    with pytest.raises(ValueError, match="two planners named 'RRT'"):
+        _bench(Budget(1.0, 100), planners=("rrt", _rrt_with_goal_bias))
+
+
+def test_a_factory_must_return_an_ompl_planner() -> None:
+    with pytest.raises(TypeError, match="planner factory returned int"):
+        _bench(Budget(1.0, 100), planners=(lambda si: 3,))
+
+
+def test_a_problem_built_by_the_user_is_benchmarked_as_built(tmp_path) -> None:
+    """benchmark_problem builds the problem and hands it to benchmark_control_problem: the
+    same arguments give the same runs; a problem changed before benchmarking is benchmarked
+    with its change."""
+    budget = Budget(60.0, 1500)
+    problem = control_problem(_scene(), "kinematic", "heavy_leading", 3, count=True)
+    built = benchmark_control_problem(problem, ["rrt", "kpiece"], 2, budget, 3, "test")
+    direct = _bench(budget)
+    keys = ("planner", "run", "seed", "solved", "tree_size", "propagations", "validity_checks")
+    assert [[r[k] for k in keys] for r in built.runs] == [[r[k] for k in keys] for r in direct.runs]
+
+    changed = control_problem(_scene(), "kinematic", "heavy_leading", 3, count=True)
+    changed.si.setMinMaxControlDuration(1, 5)
+    result = benchmark_control_problem(changed, ["rrt"], 1, budget, 3, "test")
+    assert _settings(_read_db(tmp_path, result.log))["control_RRT"]["max_control_duration"] == "5"
+
+
+def test_a_problem_without_counts_is_refused() -> None:
+    problem = control_problem(_scene(), "kinematic", "heavy_leading", 3)
+    with pytest.raises(ValueError, match="count=True"):
+        benchmark_control_problem(problem, ["rrt"], 1, Budget(1.0, 100), 3, "test")
+
+
+def test_the_docstring_examples_run() -> None:
+    import planners.benchmark
+
+    failures, tried = doctest.testmod(planners.benchmark)
+    assert tried >= 6 and failures == 0
