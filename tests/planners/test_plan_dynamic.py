@@ -24,7 +24,11 @@ from planners.plan import PlannerSettings, plan
 from validity import make_level
 
 SEEDS = (1, 2, 3, 4, 5)
-BUDGET_S = 10.0
+# Budgets are counts of propagations, so a loaded machine cannot change a run (issue 22); the
+# seconds are only a cap against a hang. Measured on seeds 1-5 and both entries: rrt needs
+# 44-693 propagations, kpiece 56-365.
+PROPAGATIONS = 5_000
+CAP_S = 600.0
 STEP = PlannerSettings().step  # OMPL's propagation step (s)
 GOAL_THRESHOLD = 1e-9  # OMPL's goal threshold in planners/goals.py GoalBox
 
@@ -57,7 +61,9 @@ def test_planner_reaches_the_goal_with_the_dynamic_level(planner: str, orientati
     level = make_level("dynamic", scene)
     solved = 0
     for seed in SEEDS:
-        result = plan(scene, "dynamic", planner, orientation, BUDGET_S, seed)
+        result = plan(
+            scene, "dynamic", planner, orientation, CAP_S, seed, propagations=PROPAGATIONS
+        )
         if not result.solved:
             continue
         solved += 1
@@ -82,8 +88,8 @@ def test_planner_reaches_the_goal_with_the_dynamic_level(planner: str, orientati
 
 def test_same_seed_same_tree_and_path() -> None:
     scene = _scene()
-    a = plan(scene, "dynamic", "rrt", "heavy_leading", BUDGET_S, 7)
-    b = plan(scene, "dynamic", "rrt", "heavy_leading", BUDGET_S, 7)
-    assert a.tree_size == b.tree_size
+    a = plan(scene, "dynamic", "rrt", "heavy_leading", CAP_S, 7, propagations=PROPAGATIONS)
+    b = plan(scene, "dynamic", "rrt", "heavy_leading", CAP_S, 7, propagations=PROPAGATIONS)
+    assert a.solved and a.tree_size == b.tree_size  # seed 7 needs 477 propagations
     np.testing.assert_array_equal(a.path, b.path)
     assert a.path.shape[1] == 6  # pose and velocity

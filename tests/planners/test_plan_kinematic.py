@@ -85,9 +85,10 @@ def test_planner_solves_table3_and_every_path_revalidates(
 
 
 def test_same_seed_same_tree_and_path() -> None:
-    a = plan(_scene(), "kinematic", "rrt", "heavy_trailing", 5.0, 7)
-    b = plan(_scene(), "kinematic", "rrt", "heavy_trailing", 5.0, 7)
-    assert a.tree_size == b.tree_size and a.path.shape[1] == 6
+    """With a count budget (not seconds: issue 22), so a loaded machine cannot cut a run."""
+    a = plan(_scene(), "kinematic", "rrt", "heavy_trailing", 600.0, 7, propagations=30_000)
+    b = plan(_scene(), "kinematic", "rrt", "heavy_trailing", 600.0, 7, propagations=30_000)
+    assert a.solved and a.tree_size == b.tree_size and a.path.shape[1] == 6
     np.testing.assert_array_equal(a.path, b.path)
     np.testing.assert_array_equal(a.fine_path, b.fine_path)
 
