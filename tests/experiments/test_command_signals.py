@@ -103,7 +103,7 @@ def test_a_signal_stops_the_command_cleanly_and_leaves_no_process(
             os.killpg(process.pid, sig)
         else:
             os.kill(process.pid, sig)
-        _, err = process.communicate(timeout=180)
+        _, err = process.communicate(timeout=300)  # a hang guard
     finally:
         if process.poll() is None:
             os.killpg(process.pid, signal.SIGKILL)

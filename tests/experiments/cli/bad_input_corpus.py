@@ -189,7 +189,7 @@ class Case:
     setup: str = ""
     keep: tuple[str, ...] = ()
     valid: bool = False
-    timeout: float | None = None  # a control that does real work (seconds); else the runner's
+    timeout: float | None = None  # a control that does real work (seconds), if over the runner's
 
 
 @dataclass
@@ -1337,9 +1337,10 @@ def run_case(
     start = time.monotonic()
     try:
         if mode == "fork":
-            code, stderr = _run_forked(argv, directory, case.timeout or timeout)
+            code, stderr = _run_forked(argv, directory, max(case.timeout or 0.0, timeout))
         else:
-            code, stderr = _run_subprocess(argv, directory, case.timeout or timeout, shared.env)
+            limit = max(case.timeout or 0.0, timeout)
+            code, stderr = _run_subprocess(argv, directory, limit, shared.env)
     finally:
         for process in after:
             _kill_group(process.pid)

@@ -38,7 +38,7 @@ def test_samples_prints_the_verdict_as_json(capsys):
     ],
 )
 def test_bad_verdict_options_are_one_line_and_exit_2(extra, message):
-    done = run_cli("simulate", "--design", "table3", *extra, timeout=120)
+    done = run_cli("simulate", "--design", "table3", *extra, timeout=300)
     assert done.returncode == 2
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and message in lines[0]
