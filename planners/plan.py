@@ -23,7 +23,7 @@ from planners.exclusive import one_at_a_time
 from planners.goals import GoalBox
 from planners.projections import register_pose_projection
 from planners.registry import make_planner
-from planners.spaces import make_control_space, make_state_space, state_codec
+from planners.spaces import level_spaces, state_codec
 from validity import make_level
 
 
@@ -129,8 +129,15 @@ def fine_path(
 
 @dataclass
 class ControlProblem:
-    """One level's planning problem as OMPL objects: the setup, its space information, the
-    level, the goal region and the reader of OMPL states into tuples."""
+    """One level's planning problem as OMPL objects, ready for any OMPL control planner.
+
+    ``ss`` is the ``oc.SimpleSetup`` with start, goal, validity checker and propagator set
+    (no planner); ``si`` its space information, with the propagation step and control
+    durations of ``settings`` and the pose projection registered (KPIECE1, EST); ``level`` the
+    fidelity level (:mod:`validity`) behind them; ``goal`` the goal region; ``read`` and
+    ``write`` turn OMPL states into tuples and back (:func:`planners.spaces.state_codec`).
+    ``counts`` holds [validity checks, propagations] made so far when counted.
+    """
 
     ss: oc.SimpleSetup
     si: oc.SpaceInformation
@@ -138,6 +145,57 @@ class ControlProblem:
     goal: GoalBox
     read: Callable
     counts: list[int] | None = None  # [validity checks, propagations] when counted
+    scene: Scene | None = None
+    orientation: str = ""
+    seed: int = 1
+    settings: PlannerSettings = field(default_factory=PlannerSettings)
+    write: Callable | None = None
+
+    @property
+    def space(self) -> ob.StateSpace:
+        """The state space (SE2, or SE2 x R^3 for pose and velocity)."""
+        return self.si.getStateSpace()
+
+    @property
+    def start(self) -> tuple[float, ...]:
+        """The start state as a tuple (the level's state at rest in the start pose)."""
+        assert self.scene is not None
+        return tuple(self.level.state_of_pose(self.scene.start(self.orientation)))
+
+    @property
+    def propagations(self) -> int:
+        """Propagations made so far (0 when not counted)."""
+        return 0 if self.counts is None else self.counts[1]
+
+    @property
+    def validity_checks(self) -> int:
+        """Validity checks made so far (0 when not counted)."""
+        return 0 if self.counts is None else self.counts[0]
+
+    def termination(
+        self, time: float, propagations: int | None = None
+    ) -> ob.PlannerTerminationCondition:
+        """OMPL's condition to stop after ``time`` seconds or, with ``propagations``, once
+        that many more propagations have been made from now (a budget that does not depend
+        on the machine: the same seed and budget give the same tree anywhere)."""
+        timed = ob.timedPlannerTerminationCondition(float(time))
+        if propagations is None:
+            return timed
+        counts = self.counts
+        if counts is None:
+            raise ValueError("a propagation budget needs a counted problem (count=True)")
+        if not 1 <= int(propagations) <= 10**9:
+            raise ValueError(f"propagations = {propagations!r} is outside the range [1, 1e9]")
+        stop_at = counts[1] + int(propagations)
+        spent = ob.PlannerTerminationCondition(lambda: counts[1] >= stop_at)
+        return ob.plannerOrTerminationCondition(timed, spent)
+
+    def warm_up(self) -> None:
+        """Compile (or load from numba's cache) the level's kernels now, so that a planner's
+        clock measures planning, not compilation (seconds on a first run)."""
+        start = self.start
+        self.level.is_valid(start)
+        self.level.propagate(start, np.zeros(self.level.control_dim), self.settings.step)
 
 
 def seed_ompl(seed: int) -> None:
@@ -166,9 +224,8 @@ def control_problem(
     start_pose = scene.start(orientation)
     level = make_level(level_name, scene, **(level_options or {}))
     seed_ompl(seed)
-    space = make_state_space(scene, level.state_dim, getattr(level, "velocity_limit", None))
-    low, high = level.control_bounds()
-    ss = oc.SimpleSetup(make_control_space(space, low, high))
+    space, controls = level_spaces(level)
+    ss = oc.SimpleSetup(controls)
     counts = [0, 0] if count else None
     ss.setStateValidityChecker(validity_checker(level, counts))
     ss.setStatePropagator(state_propagator(level, counts))
@@ -182,7 +239,19 @@ def control_problem(
     ss.setStartState(start)
     goal = GoalBox(si, scene.goal, level.state_dim, np.random.default_rng(seed))
     ss.setGoal(goal)
-    return ControlProblem(ss=ss, si=si, level=level, goal=goal, read=read, counts=counts)
+    return ControlProblem(
+        ss=ss,
+        si=si,
+        level=level,
+        goal=goal,
+        read=read,
+        counts=counts,
+        scene=scene,
+        orientation=orientation,
+        seed=int(seed),
+        settings=settings,
+        write=write,
+    )
 
 
 @one_at_a_time
@@ -218,25 +287,10 @@ def plan(
     ss, si, level, goal, read = problem.ss, problem.si, problem.level, problem.goal, problem.read
     ss.setPlanner(make_planner(planner_name, si))
     ss.setup()
-    start_pose = scene.start(orientation)
-
-    # Compile (or load from cache) the level's kernels now, so `time` measures planning only.
-    level.is_valid(level.state_of_pose(start_pose))
-    level.propagate(level.state_of_pose(start_pose), np.zeros(level.control_dim), settings.step)
+    problem.warm_up()  # so that `time` measures planning only
     t0 = time.perf_counter()
-    before = 0
-    if propagations is None:
-        ss.solve(float(time_limit))
-    else:
-        counts = problem.counts
-        assert counts is not None
-        before = counts[1]
-        stop_at = before + int(propagations)
-        ptc = ob.plannerOrTerminationCondition(
-            ob.timedPlannerTerminationCondition(float(time_limit)),
-            ob.PlannerTerminationCondition(lambda: counts[1] >= stop_at),
-        )
-        ss.solve(ptc)
+    before = problem.propagations
+    ss.solve(problem.termination(time_limit, propagations))
     elapsed = time.perf_counter() - t0
     solved = bool(ss.haveExactSolutionPath())
 

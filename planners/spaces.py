@@ -44,7 +44,9 @@ def make_state_space(
     return space
 
 
-def make_control_space(space: ob.StateSpace, low: Sequence[float], high: Sequence[float]):
+def make_control_space(
+    space: ob.StateSpace, low: Sequence[float], high: Sequence[float]
+) -> oc.RealVectorControlSpace:
     """A box of controls ``low <= u <= high`` (a zero-width range fixes that component)."""
     control_space = oc.RealVectorControlSpace(space, len(low))
     bounds = ob.RealVectorBounds(len(low))
@@ -81,3 +83,12 @@ def state_codec(state_dim: int) -> tuple[Callable, Callable]:
         w[0], w[1], w[2] = v[3], v[4], v[5]
 
     return read6, write6
+
+
+def level_spaces(level) -> tuple[ob.StateSpace, oc.RealVectorControlSpace]:
+    """The state space and the control space (the input set U, Eqs. 7-9) of a level
+    (:mod:`validity`): what :func:`planners.adapters.validity_checker` and
+    :func:`planners.adapters.state_propagator` read and write."""
+    space = make_state_space(level.scene, level.state_dim, getattr(level, "velocity_limit", None))
+    low, high = level.control_bounds()
+    return space, make_control_space(space, low, high)

@@ -1,5 +1,7 @@
 """The scene a subcommand works on: ``--design`` (a paper preset or 12 values) or ``--scene``
-(a YAML file), and the entry orientations to run from it."""
+(a YAML file, or the name of a scene packaged with partfeeder), and the entry orientations to
+run from it. What a specification means is :mod:`feeders.scene_spec`'s (shared with the Python
+API); here its errors become one-line usage errors."""
 
 from __future__ import annotations
 
@@ -13,6 +15,10 @@ from experiments.names import PRESET_NAMES
 if TYPE_CHECKING:
     from feeders.scene import Scene
 
+PACKAGED_SCENES = "scenes"  # experiments/scenes/<name>.yaml, package data of the wheel
+# Named in --scene's help; tests/experiments/cli/test_scene_arguments.py checks they exist.
+SCENE_EXAMPLES = ("table3", "incline", "drop")
+
 
 def add_scene_arguments(p: argparse.ArgumentParser) -> None:
     """``--design`` or ``--scene`` (one of them; default: the table3 preset)."""
@@ -23,41 +29,64 @@ def add_scene_arguments(p: argparse.ArgumentParser) -> None:
         help=f"a paper preset ({', '.join(sorted(PRESET_NAMES))}) or the 12 values "
         "a,b,c,d,e,fx,fy,gx,gy,r,theta,alpha separated by commas (default: table3)",
     )
-    group.add_argument("--scene", type=Path, help="a scene YAML file")
+    group.add_argument(
+        "--scene",
+        type=Path,
+        help="a scene YAML file, or the name of a scene packaged with partfeeder "
+        f"({', '.join(SCENE_EXAMPLES)}, ...; a file of that name comes first)",
+    )
+
+
+def packaged_scene_names() -> list[str]:
+    """The scenes packaged with partfeeder (``experiments/scenes/*.yaml``), by name."""
+    from importlib.resources import files
+
+    folder = files("experiments").joinpath(PACKAGED_SCENES)
+    return sorted(e.name[: -len(".yaml")] for e in folder.iterdir() if e.name.endswith(".yaml"))
+
+
+def scene_path(given: Path) -> Path:
+    """The file ``--scene`` names: ``given`` if such a file exists (or it is a path with a
+    directory part), else the packaged scene of that name (``table3`` or ``table3.yaml``),
+    read through importlib.resources so that it works from an installed wheel in any
+    directory; UsageError listing the packaged names when it is neither."""
+    from importlib.resources import as_file, files
+
+    text = str(given)
+    if given.exists() or given.parent != Path("."):
+        return given
+    name = text[: -len(".yaml")] if text.endswith(".yaml") else text
+    names = packaged_scene_names()
+    if name not in names:
+        from feeders.fields import shown
+
+        raise UsageError(
+            f"--scene: '{shown(text)}' is neither a file nor a packaged scene; "
+            f"packaged scenes: {', '.join(names)}"
+        )
+    resource = files("experiments").joinpath(PACKAGED_SCENES, f"{name}.yaml")
+    with as_file(resource) as path:  # a real file for an installed package (not zipped)
+        return Path(path)
 
 
 def load_scene(design: str | None, scene_file: Path | None) -> Scene:
     """The scene of ``--design`` / ``--scene``, physically sane (the same checks as a scene
     file: :func:`feeders.scene_yaml.checked_scene`); UsageError for bad values or a bad file."""
-    from feeders.design import DesignError, DesignParameters, preset
-    from feeders.feeder import DegenerateDesign, build_feeder
-    from feeders.fields import shown
-    from feeders.scene_yaml import SceneError, checked_scene, load_scene
+    from feeders.design import DesignError
+    from feeders.scene_spec import design_scene, scene_of
+    from feeders.scene_yaml import SceneError
 
+    if design is not None and not design.strip():
+        raise UsageError(
+            f"--design is empty; give a preset ({', '.join(sorted(PRESET_NAMES))}) or "
+            "12 comma-separated values"
+        )
     try:
         if scene_file is not None:
-            return load_scene(scene_file)
-        spec = "table3" if design is None else design.strip()
-        if not spec:
-            raise UsageError(
-                f"--design is empty; give a preset ({', '.join(sorted(PRESET_NAMES))}) or "
-                "12 comma-separated values"
-            )
-        if "," in spec:
-            try:
-                values = [float(v) for v in spec.split(",")]
-            except ValueError:
-                raise UsageError(
-                    f"--design: '{shown(spec)}' is not 12 comma-separated numbers"
-                ) from None
-            scene = build_feeder(DesignParameters.from_vector(values), name="custom design")
-        else:
-            scene = build_feeder(preset(spec), name=spec)
-        return checked_scene(scene)
+            return scene_of(scene_path(scene_file))
+        return design_scene("table3" if design is None else design)
     except (DesignError, SceneError) as exc:
         raise UsageError(str(exc)) from None
-    except DegenerateDesign as exc:
-        raise UsageError(f"degenerate design: {exc}") from None
 
 
 def orientations(scene: Scene, choice: str) -> list[str]:
