@@ -31,6 +31,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--out", type=Path, default=None, help="directory for the failing cases' YAML files"
     )
+    parser.add_argument(
+        "--case",
+        type=int,
+        default=None,
+        help="instead: run case N of --seed alone; with --out its file is written, "
+        "whatever its result (a case to --replay, or to send with a report)",
+    )
     parser.add_argument("--replay", type=Path, default=None, help="run one case file again")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
 
@@ -56,6 +63,10 @@ def _check(args: argparse.Namespace) -> tuple[str, ...]:
         )
     if not 0 <= args.seed <= MAX_SEED:
         raise ValueError(f"--seed = {args.seed} is outside the allowed range [0, {MAX_SEED}]")
+    if args.case is not None and not 0 <= args.case < MAX_CASES:
+        raise ValueError(f"--case = {args.case} is outside the allowed range [0, {MAX_CASES - 1}]")
+    if args.case is not None and args.replay is not None:
+        raise ValueError("--case and --replay: give one of them")
     return _levels(args.levels)
 
 
@@ -69,6 +80,8 @@ def run(args: argparse.Namespace) -> int:
         return 2
     if args.replay is not None:
         return _replay(args)
+    if args.case is not None:
+        return _one_case(args, levels)
     from experiments.stress.generate import generate_case
     from experiments.stress.pool import progress_bar, run_cases
     from experiments.stress.report import summary, table, write_case
@@ -87,6 +100,26 @@ def run(args: argparse.Namespace) -> int:
         ]  # a case the generator could not make has no file: its record names the fault
     print(json.dumps(data, indent=1) if args.json else table(data))
     return 1 if data["hard_failures"] else 0
+
+
+def _one_case(args: argparse.Namespace, levels: tuple[str, ...]) -> int:
+    """Case ``--case`` of ``--seed`` (the same case the full run deals at that index): its
+    record, and with ``--out`` its replayable file whatever the result."""
+    from experiments.stress.generate import generate_case
+    from experiments.stress.report import write_case
+    from experiments.stress.runner import record_of
+
+    case = generate_case(args.seed, args.case, levels)
+    record = record_of(case)
+    path = None if args.out is None else write_case(args.out, case, record)
+    if args.json:
+        print(json.dumps({"record": record, "file": None if path is None else str(path)}, indent=1))
+    else:
+        for key, value in record.items():
+            print(f"{key}: {value}")
+        if path is not None:
+            print(f"case file: {path}")
+    return 1 if record["hard"] else 0
 
 
 def _replay(args: argparse.Namespace) -> int:
