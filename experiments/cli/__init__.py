@@ -5,7 +5,8 @@ One small module per subcommand declares its flags and runs its job, importing t
 numba, OMPL, matplotlib) only when it runs: ``plan``, ``simulate``, ``draw``, ``calibrate``,
 ``bench``, ``feasibility``, ``run_sweep`` (``partfeeder run``) and ``report``. Below them:
 ``scenes`` reads ``--design``/``--scene``, ``usage`` holds the shared checks and
-``UsageError``, ``console`` keeps OMPL's log and nanobind's exit report away from users.
+``UsageError``, ``console`` keeps OMPL's log and nanobind's exit report away from users,
+``kernels`` compiles the numba kernels once, before a job's workers start, and says so.
 """
 
 from experiments.cli.entry import main, run

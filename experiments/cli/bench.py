@@ -11,6 +11,7 @@ import json
 import sys
 from pathlib import Path
 
+from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, check_out_dir, check_seed
 
 SECTIONS = ("analytic", "speed", "feeder", "ladder")  # experiments.bench.suite.SECTIONS
@@ -137,6 +138,8 @@ def _agreement(args: argparse.Namespace) -> int:
     settings = AgreementSettings(
         trials=trials, seed=args.draw_seed, peer_step=args.peer_step, engines=engines
     )
+    if "partfeeder" in engines and args.workers > 1:
+        compile_once(["dynamic"])  # before the workers start: they then only load them
     data = agreement_data(
         designs,
         settings,

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, check_count, check_time, out_dir
 
 PART_FILES = ("part-calibration.md", "part-calibration.json", "calibration-landscape.png")
@@ -35,10 +36,15 @@ def add_arguments(cal: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Every value is checked before numba, OMPL or matplotlib is imported."""
     if args.part:
         return _run_part(args)
     if args.quick:
         raise UsageError("--quick needs --part")
+    check_count(args.runs, "--runs", 1000)
+    check_time(args.time)
+    out = out_dir(args.out)
+    compile_once(["geometric"])
     from tqdm import tqdm
 
     from experiments.pictures.atlas import corner_census, draw_atlas
@@ -46,9 +52,6 @@ def run(args: argparse.Namespace) -> int:
     from feeders.design import PRESETS
     from feeders.feeder import ORIENTATIONS
 
-    check_count(args.runs, "--runs", 1000)
-    check_time(args.time)
-    out = out_dir(args.out)
     with tqdm(total=len(PRESETS) * len(ORIENTATIONS), desc="calibrating", unit="run") as bar:
         rows = calibrate(
             runs=args.runs,
@@ -70,16 +73,17 @@ def _run_part(args: argparse.Namespace) -> int:
     """The part calibration: landscape, choice, Markdown table + JSON + heatmap into --out."""
     import json
 
-    from tqdm import tqdm
-
-    from experiments.verdicts import part_calibration as pc
-
     if args.out is None:
         raise UsageError("--part needs --out DIR (where the table, data and heatmap go)")
     if not 1 <= args.workers <= 64:
         raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
     out = out_dir(args.out)
     assert out is not None
+    compile_once(["geometric", "dynamic"])  # the paper's verdicts, then the passive drops
+    from tqdm import tqdm
+
+    from experiments.verdicts import part_calibration as pc
+
     grid, budget = (
         (pc.QUICK_GRID, pc.QUICK_BUDGET) if args.quick else (pc.FULL_GRID, pc.FULL_BUDGET)
     )

@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, out_dir
 from experiments.names import EXECUTOR_NAMES
 
@@ -137,6 +138,8 @@ def run(args: argparse.Namespace) -> int:
 
     bar = _Bar(args.quiet or args.json)
     with sweep_lock(out, job="optimize"):
+        if args.executor == "local":
+            compile_once(["passive"])  # before the workers start: they then only load them
         t0 = time.perf_counter()
         try:
             results = optimise(config, out, best, args.executor, args.scheduler, progress=bar)

@@ -7,6 +7,7 @@ import argparse
 import json
 from pathlib import Path
 
+from experiments.cli.kernels import compile_once
 from experiments.cli.scenes import add_scene_arguments, load_scene, orientations
 from experiments.cli.usage import check_seed, check_time, out_dir
 from experiments.names import LEVEL_NAMES, PLANNER_NAMES
@@ -29,17 +30,21 @@ def add_arguments(plan: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from experiments.pictures.scenes import plan_figure
-    from planners.plan import plan
-
+    """Every value is checked before OMPL, numba or matplotlib is imported (issue 22: a bad
+    ``--design`` took 0.5 s, as long as importing them); matplotlib only with ``--out``."""
     check_time(args.time)
     check_seed(args.seed)
     scene = load_scene(args.design, args.scene)
     chosen = orientations(scene, args.orientation)
     out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
+    compile_once([args.level])
+    from planners.plan import plan
+
     results = [plan(scene, args.level, args.planner, o, args.time, args.seed) for o in chosen]
     figure = None
     if out is not None:
+        from experiments.pictures.scenes import plan_figure
+
         stem = f"plan_{scene.name}_{args.level}_{args.planner}".replace(" ", "_")
         figure = str(plan_figure(scene, results, out / f"{stem}.png"))
         (out / f"{stem}.json").write_text(json.dumps([r.summary() for r in results], indent=2))
