@@ -103,6 +103,7 @@ def test_a_smaller_budget_in_the_same_directory_sees_only_its_own_calls(small_ru
     assert run["curve"] == first["runs"][0]["curve"][:3]
 
 
+@pytest.mark.slow  # end to end, run by CI's longer job (issue 22)
 def test_same_seed_same_result_with_one_worker_or_two(small_run, tmp_path):
     _, two = small_run
     one = optimise(config_from_dict({**SMALL, "workers": 1}), tmp_path / "one")
@@ -127,6 +128,7 @@ def _stored(path):
         db.close()
 
 
+@pytest.mark.slow  # end to end, run by CI's longer job (issue 22)
 def test_a_killed_run_resumes_without_repeating_or_losing_evaluations(tmp_path):
     config = {
         **SMALL,
@@ -177,6 +179,7 @@ def test_a_killed_run_resumes_without_repeating_or_losing_evaluations(tmp_path):
     assert resumed["optimum"]["values"] == fresh["optimum"]["values"]
 
 
+@pytest.mark.slow  # end to end, run by CI's longer job (issue 22)
 def test_same_result_on_a_dask_cluster(small_run, tmp_path):
     distributed = pytest.importorskip("distributed")
     _, local = small_run

@@ -224,6 +224,7 @@ def test_a_verdict_row_this_program_cannot_write_is_refused(tmp_path: Path) -> N
         results_db.connect(path)
 
 
+@pytest.mark.slow  # end to end, run by CI's longer job (issue 22)
 def test_the_passive_verdicts_are_the_same_on_the_dask_executor(tmp_path: Path) -> None:
     """Reference: the same sweep on the local executor (worker processes)."""
     distributed = pytest.importorskip("distributed")

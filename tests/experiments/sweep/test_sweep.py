@@ -209,6 +209,7 @@ def test_a_sweep_killed_with_sigkill_resumes_to_the_rows_of_an_uninterrupted_run
     )
 
 
+@pytest.mark.slow  # end to end, run by CI's longer job (issue 22)
 def test_a_design_that_kills_its_worker_every_time_is_quarantined_and_the_sweep_completes(
     reference: Path, tmp_path: Path
 ) -> None:
@@ -224,6 +225,7 @@ def test_a_design_that_kills_its_worker_every_time_is_quarantined_and_the_sweep_
         assert got[table] == [r for r in want[table] if r[0] != CRASHING_DESIGN]
 
 
+@pytest.mark.slow  # end to end, run by CI's longer job (issue 22)
 @pytest.mark.parametrize(
     ("n_workers", "threads"),
     [(2, 1), (1, 2)],
@@ -279,7 +281,14 @@ def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path, int
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
-@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+@pytest.mark.parametrize(
+    "sig",
+    [
+        signal.SIGTERM,
+        pytest.param(signal.SIGINT, marks=pytest.mark.slow),
+    ],  # SIGINT: CI's longer job
+    ids=["SIGTERM", "SIGINT"],
+)
 def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resumes(
     reference: Path, tmp_path: Path, sig: signal.Signals
 ) -> None:
