@@ -23,61 +23,22 @@ import dataclasses
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from experiments.drop.outcomes import OUTCOMES, SIMULATION_FAULT, classify
 from experiments.drop.passive import passive_drop
-from experiments.drop.perturbations import DropDraw, Perturbations, draw, toleranced
+from experiments.drop.perturbations import DropDraw, draw, toleranced
+from experiments.drop.verdict_settings import VerdictSettings
 from experiments.proportions import wilson_interval
 from feeders.design import DesignParameters
 from feeders.feeder import DEFAULT_FRICTION, ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.part import DEFAULT_PEG, Peg
 from feeders.scene import Scene
-from validity.dynamic import DEFAULT_STEP, DynamicLevel
+from validity.dynamic import DynamicLevel
 
 UNBUILDABLE = "feeder not buildable"  # the toleranced design has no valid feeder
 CLASSES = (*OUTCOMES, UNBUILDABLE)
 ENTRY_RETRIES = 6  # halvings of a drop's entry offset that puts the part into a wall
-
-
-@dataclass(frozen=True)
-class VerdictSettings:
-    """How a verdict is reached: the target probability, the trial budget (``min_drops``
-    before the first look, then a look every ``batch``, at most ``max_drops``), the dynamic
-    level's step h (s) and longest drop (s), and the perturbations."""
-
-    target: float = 0.9
-    min_drops: int = 10
-    batch: int = 10
-    max_drops: int = 200
-    step: float = DEFAULT_STEP
-    t_max: float = 10.0
-    perturbations: Perturbations = field(default_factory=Perturbations)
-
-    def __post_init__(self) -> None:
-        checks = (
-            ("target", self.target, 0.0, 1.0),
-            ("min_drops", self.min_drops, 1, 100_000),
-            ("batch", self.batch, 1, 100_000),
-            ("max_drops", self.max_drops, 1, 100_000),
-            ("step", self.step, 1e-6, 0.1),
-            ("t_max", self.t_max, 1e-3, 3600.0),
-        )
-        for name, value, low, high in checks:
-            if isinstance(value, bool) or not (
-                isinstance(value, int | float) and math.isfinite(value)
-            ):
-                raise ValueError(f"verdict.{name} = {value!r} must be a number")
-            if name in ("min_drops", "batch", "max_drops") and not isinstance(value, int):
-                raise ValueError(f"verdict.{name} = {value!r} must be a whole number")
-            if not low <= value <= high:
-                raise ValueError(
-                    f"verdict.{name} = {value!r} is outside the allowed range [{low:g}, {high:g}]"
-                )
-        if self.min_drops > self.max_drops:
-            raise ValueError(
-                f"verdict.min_drops = {self.min_drops} is more than max_drops = {self.max_drops}"
-            )
 
 
 @dataclass(frozen=True)

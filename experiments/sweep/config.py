@@ -132,7 +132,7 @@ class SweepConfig:
 def _passive_rung(spec: Any, field_name: str) -> Rung:
     """The passive rung: its settings checked by the classes that use them."""
     from experiments.drop.perturbations import Perturbations
-    from experiments.drop.verdict import VerdictSettings
+    from experiments.drop.verdict_settings import VerdictSettings
 
     spec = mapping_field(spec, field_name, {"level", "verdict", "perturbations"})
     verdict = mapping_field(spec.get("verdict", {}) or {}, f"{field_name}.verdict", VERDICT_KEYS)

@@ -71,12 +71,6 @@ def test_parser_loads_no_heavy_library(args):
     assert not _loaded(*args) & set(HEAVY)
 
 
-CONFIG_CHECKS_PENDING = pytest.mark.xfail(
-    strict=True,
-    reason="the sweep config reader imports experiments.drop.verdict, and with it numba, to "
-    "check the passive rung's settings: needs VerdictSettings in a module of its own "
-    "(issue 22, helper D's diff)",
-)
 FEASIBILITY_PENDING = pytest.mark.xfail(
     strict=True,
     reason="experiments/cli/feasibility.py imports its job before checking its flags "
@@ -116,8 +110,8 @@ BAD_VALUES = [
     (("run", "nosuch.yaml"), "cannot read config file 'nosuch.yaml'"),
     (("run", "--executor", "dask"), "--executor dask needs --scheduler"),
     (("run", "--scheduler", "tcp://h:1"), "--scheduler is only for --executor dask"),
-    pytest.param(("run", "--designs", "-3"), "designs.count = -3", marks=CONFIG_CHECKS_PENDING),
-    pytest.param(("run", "--workers", "0"), "workers = 0", marks=CONFIG_CHECKS_PENDING),
+    pytest.param(("run", "--designs", "-3"), "designs.count = -3"),
+    pytest.param(("run", "--workers", "0"), "workers = 0"),
     (("optimize", "nosuch.yaml"), "cannot read config file 'nosuch.yaml'"),
     (("optimize", "--workers", "0"), "workers = 0"),
     (("optimize", "--executor", "dask"), "--executor dask needs --scheduler"),
