@@ -82,6 +82,9 @@ def run(args: argparse.Namespace) -> int:
         return _replay(args)
     if args.case is not None:
         return _one_case(args, levels)
+    from experiments.cli.kernels import compile_once
+
+    compile_once(levels)  # here, once: the workers' warm-up then only loads the kernels
     from experiments.stress.generate import generate_case
     from experiments.stress.pool import progress_bar, run_cases
     from experiments.stress.report import summary, table, write_case
