@@ -51,3 +51,12 @@ def test_every_python_block_of_the_page_runs_in_order(tmp_path, monkeypatch, cap
     log = (tmp_path / "table3.log").read_text()
     assert "table3/dynamic/heavy_leading" in log and "propagations INTEGER" in log
     assert (tmp_path / "table3-dynamic.log").exists()  # OMPL's own Benchmark's log
+
+
+def test_the_readme_python_block_runs(tmp_path, monkeypatch, capsys) -> None:
+    """README's example is the one a researcher tries first: it runs and reaches the goal."""
+    readme = Path(__file__).resolve().parents[2] / "README.md"
+    (block,) = BLOCK.findall(readme.read_text())
+    monkeypatch.chdir(tmp_path)
+    exec(compile(block, "README.md python block", "exec"), {"__name__": "readme"})
+    assert capsys.readouterr().out.splitlines()[0].startswith("True ")
