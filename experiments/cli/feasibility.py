@@ -15,6 +15,7 @@ import json
 import sys
 from pathlib import Path
 
+from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, check_count, check_seed, check_time, out_dir
 from experiments.names import LEVEL_NAMES, PLANNER_NAMES
 
@@ -151,10 +152,16 @@ def _report(summary: dict) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Every flag is checked before numba, OMPL or matplotlib is imported, and the kernels
+    of both levels are compiled here once before the workers start (issue 22)."""
     import csv
     import os
     import time
 
+    levels, workers = _options(args)
+    out = out_dir(args.out)
+    time_limit = _time_limit(args)
+    compile_once(levels)
     from tqdm import tqdm
 
     from experiments.verdicts.feasibility import (
@@ -165,9 +172,6 @@ def run(args: argparse.Namespace) -> int:
     )
     from experiments.verdicts.feasibility_figure import feasibility_figure
 
-    levels, workers = _options(args)
-    out = out_dir(args.out)
-    time_limit = _time_limit(args)
     if workers > (os.cpu_count() or 1) and args.propagations is None:
         print(
             f"partfeeder feasibility: note: --workers {workers} > {os.cpu_count()} CPUs; the "

@@ -1,5 +1,9 @@
 """``partfeeder plan``: plan the part through a feeder with one level and one OMPL planner, for
-one or both entry orientations; prints a summary (or JSON) and can draw the tree and path."""
+one or both entry orientations; prints a summary (or JSON) and can draw the tree and path.
+
+The budget per run is wall-clock seconds (``--time``) or, machine-independent, a count of
+propagations (``--propagations``; ``--time`` is then a cap, 600 s unless given, as a sweep's
+``budget: {propagations: N}``): the same seed and count give the same run on any machine."""
 
 from __future__ import annotations
 
@@ -9,8 +13,12 @@ from pathlib import Path
 
 from experiments.cli.kernels import compile_once
 from experiments.cli.scenes import add_scene_arguments, load_scene, orientations
-from experiments.cli.usage import check_seed, check_time, out_dir
+from experiments.cli.usage import check_count, check_seed, check_time, out_dir
 from experiments.names import LEVEL_NAMES, PLANNER_NAMES
+
+DEFAULT_TIME_S = 5.0  # the wall-clock budget without --propagations
+CAP_TIME_S = 600.0  # the cap with --propagations, as a sweep's
+MAX_PROPAGATIONS = 10**9  # as a sweep's budget.propagations
 
 
 def add_arguments(plan: argparse.ArgumentParser) -> None:
@@ -22,7 +30,20 @@ def add_arguments(plan: argparse.ArgumentParser) -> None:
         default="both",
         help="both, or one start of the scene (feeder: heavy_leading, heavy_trailing)",
     )
-    plan.add_argument("--time", type=float, default=5.0, help="planning time per run (s)")
+    plan.add_argument(
+        "--time",
+        type=float,
+        default=None,
+        help=f"planning time per run (s, wall clock; default {DEFAULT_TIME_S:g}); with "
+        f"--propagations only a cap (default {CAP_TIME_S:g})",
+    )
+    plan.add_argument(
+        "--propagations",
+        type=int,
+        default=None,
+        help="planning budget per run in propagations (machine-independent: the same seed "
+        "gives the same run on any machine and under any load)",
+    )
     plan.add_argument("--seed", type=int, default=1)
     plan.add_argument("--out", type=Path, default=None, help="directory for the picture")
     plan.add_argument("--json", action="store_true", help="print JSON instead of a table")
@@ -32,15 +53,33 @@ def add_arguments(plan: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Every value is checked before OMPL, numba or matplotlib is imported (issue 22: a bad
     ``--design`` took 0.5 s, as long as importing them); matplotlib only with ``--out``."""
-    check_time(args.time)
+    if args.time is not None:
+        check_time(args.time)
+    if args.propagations is not None:
+        check_count(args.propagations, "--propagations", MAX_PROPAGATIONS)
     check_seed(args.seed)
+    if args.time is not None:
+        time_limit = float(args.time)
+    else:
+        time_limit = DEFAULT_TIME_S if args.propagations is None else CAP_TIME_S
     scene = load_scene(args.design, args.scene)
     chosen = orientations(scene, args.orientation)
     out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
     compile_once([args.level])
     from planners.plan import plan
 
-    results = [plan(scene, args.level, args.planner, o, args.time, args.seed) for o in chosen]
+    results = [
+        plan(
+            scene,
+            args.level,
+            args.planner,
+            o,
+            time_limit,
+            args.seed,
+            propagations=args.propagations,
+        )
+        for o in chosen
+    ]
     figure = None
     if out is not None:
         from experiments.pictures.scenes import plan_figure
@@ -51,9 +90,12 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({"runs": [r.summary() for r in results], "figure": figure}, indent=2))
         return 0
+    budget = f"{time_limit:g} s"
+    if args.propagations is not None:
+        budget = f"{args.propagations} propagations (cap {budget})"
     print(
         f"{scene.name} | level {args.level} | planner {args.planner} | seed {args.seed} | "
-        f"budget {args.time:g} s"
+        f"budget {budget}"
     )
     print(f"{'orientation':<16}{'solved':>7}{'time (s)':>10}{'tree':>8}{'path length':>13}")
     for r in results:

@@ -10,6 +10,9 @@ from cli_process import ROOT, noise, run_cli
 from experiments.cli import run
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+# A planning budget in propagations, not seconds, so a loaded machine cannot cut a run
+# (issue 22); table3's geometric entries need 3,400-52,600 with rrt and seeds 1-20.
+BUDGET = ("--propagations", "200000")
 
 
 _cli = run_cli
@@ -28,8 +31,7 @@ def test_plan_both_orientations_prints_summary_and_writes_picture(tmp_path):
         "rrt",
         "--orientation",
         "both",
-        "--time",
-        "5",
+        *BUDGET,
         "--seed",
         "1",
         "--out",
@@ -47,14 +49,14 @@ def test_plan_both_orientations_prints_summary_and_writes_picture(tmp_path):
 
 def test_verbose_shows_ompl_log():
     proc = _cli(
-        "plan", "--design", "table3", "--orientation", "heavy_trailing", "--time", "5", "--verbose"
+        "plan", "--design", "table3", "--orientation", "heavy_trailing", *BUDGET, "--verbose"
     )
     assert proc.returncode == 0
     assert "RRT" in proc.stdout + proc.stderr
 
 
 def test_json_output_is_machine_readable(capsys):
-    assert run(["plan", "--design", "table3", "--time", "5", "--seed", "2", "--json"]) == 0
+    assert run(["plan", "--design", "table3", *BUDGET, "--seed", "2", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert [r["orientation"] for r in data["runs"]] == ["heavy_leading", "heavy_trailing"]
     for r in data["runs"]:
@@ -64,11 +66,12 @@ def test_json_output_is_machine_readable(capsys):
 
 def test_twelve_values_and_scene_file_are_accepted(tmp_path, capsys):
     values = "1.1,1.1086,0.7979,3.0078,-1.9,-0.9849,1.0098,0.733,2.0388,0.101,0.4673,1.0472"
-    assert run(["plan", "--design", values, "--orientation", "heavy_trailing", "--json"]) == 0
+    argv = ["--orientation", "heavy_trailing", *BUDGET, "--json"]
+    assert run(["plan", "--design", values, *argv]) == 0
     by_values = json.loads(capsys.readouterr().out)["runs"][0]
     scene = tmp_path / "t3.yaml"
     scene.write_text("feeder:\n  preset: table3\n")
-    assert run(["plan", "--scene", str(scene), "--orientation", "heavy_trailing", "--json"]) == 0
+    assert run(["plan", "--scene", str(scene), *argv]) == 0
     by_file = json.loads(capsys.readouterr().out)["runs"][0]
     # Same geometry and seed: the same plan.
     assert by_values["tree_size"] == by_file["tree_size"]
@@ -84,6 +87,7 @@ def test_twelve_values_and_scene_file_are_accepted(tmp_path, capsys):
         (["--scene", "/no/such/scene.yaml"], "cannot read scene file"),
         (["--orientation", "sideways"], "--orientation 'sideways'"),
         (["--time", "-1"], "--time = -1.0 is outside the allowed range"),
+        (["--propagations", "0"], "--propagations = 0 is outside the allowed range"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(capsys, args, message):

@@ -71,12 +71,6 @@ def test_parser_loads_no_heavy_library(args):
     assert not _loaded(*args) & set(HEAVY)
 
 
-FEASIBILITY_PENDING = pytest.mark.xfail(
-    strict=True,
-    reason="experiments/cli/feasibility.py imports its job before checking its flags "
-    "(issue 22, helper D's diff)",
-)
-
 # (arguments, a piece of the one-line error): every subcommand's values, each refused with
 # exit status 2 before numba, OMPL or matplotlib is imported.
 BAD_VALUES = [
@@ -117,7 +111,7 @@ BAD_VALUES = [
     (("optimize", "--executor", "dask"), "--executor dask needs --scheduler"),
     (("optimize", "--from", "/nonexistent-sweep"), "no results.sqlite"),
     (("stress", "--cases", "-1"), "--cases = -1"),
-    pytest.param(("feasibility", "--designs", "-1"), "--designs = -1", marks=FEASIBILITY_PENDING),
+    pytest.param(("feasibility", "--designs", "-1"), "--designs = -1"),
 ]
 
 
