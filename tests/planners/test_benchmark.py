@@ -59,7 +59,7 @@ def test_a_propagation_budget_stops_a_run_within_one_planner_iteration_of_it() -
 
 
 def test_runs_are_seeded_by_run_index_so_planners_start_alike() -> None:
-    result = _bench(Budget(1.0), runs=3, seed=11)
+    result = _bench(Budget(60.0, 500), runs=3, seed=11)
     assert [r["seed"] for r in result.runs] == [11, 12, 13, 11, 12, 13]
     assert [r["run"] for r in result.runs] == [0, 1, 2, 0, 1, 2]
 
@@ -127,7 +127,7 @@ def test_bad_arguments_name_what_is_wrong() -> None:
 def test_nothing_is_written_to_the_working_directory(tmp_path, monkeypatch) -> None:
     """OMPL's Benchmark saves an ompl_<host>_<date>.console file per experiment unless told."""
     monkeypatch.chdir(tmp_path)
-    _bench(Budget(0.1), planners=("rrt",), runs=1)
+    _bench(Budget(60.0, 200), planners=("rrt",), runs=1)
     assert list(tmp_path.iterdir()) == []
 
 
