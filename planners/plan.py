@@ -219,7 +219,10 @@ def control_problem(
     state and control spaces, the level as validity checker and propagator, the propagation
     step and control durations of ``settings``, the pose projection and the goal (its sampler
     seeded by ``seed``, as is OMPL's generator). No planner is set. With ``count``, the
-    problem's ``counts`` holds [validity checks, propagations] made so far."""
+    problem's ``counts`` holds [validity checks, propagations] made so far. The level's
+    kernels are compiled (or loaded from numba's cache) before it returns, so a planner's
+    clock measures planning: on a cold cache the first propagation took the seconds of a
+    compile, and a time budget ran out in it (issue 22)."""
     settings = settings or PlannerSettings()
     start_pose = scene.start(orientation)
     level = make_level(level_name, scene, **(level_options or {}))
@@ -239,7 +242,7 @@ def control_problem(
     ss.setStartState(start)
     goal = GoalBox(si, scene.goal, level.state_dim, np.random.default_rng(seed))
     ss.setGoal(goal)
-    return ControlProblem(
+    problem = ControlProblem(
         ss=ss,
         si=si,
         level=level,
@@ -252,6 +255,8 @@ def control_problem(
         settings=settings,
         write=write,
     )
+    problem.warm_up()
+    return problem
 
 
 @one_at_a_time
@@ -287,7 +292,6 @@ def plan(
     ss, si, level, goal, read = problem.ss, problem.si, problem.level, problem.goal, problem.read
     ss.setPlanner(make_planner(planner_name, si))
     ss.setup()
-    problem.warm_up()  # so that `time` measures planning only
     t0 = time.perf_counter()
     before = problem.propagations
     ss.solve(problem.termination(time_limit, propagations))
