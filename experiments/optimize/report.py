@@ -17,9 +17,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-from experiments.sweep.report_figures import DASH, cell
-from experiments.sweep.report_html import STYLE, figure_html, html_table
-from experiments.sweep.report_verdicts import design_verdict_html, strip_name
+from experiments.report_kit.cells import DASH, cell
+from experiments.report_kit.page import STYLE, figure_html, html_table
+from experiments.report_kit.verdict_section import design_verdict_html, strip_name
 from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS
 
 CONVERGENCE = "convergence"
@@ -270,9 +270,7 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
     for label in LABELS:
         entry = results.get(label)
         if entry is not None and entry.get("verdict"):
-            parts += design_verdict_html(
-                {"design_id": label, "verdict": entry["verdict"]}, figures, html_table, figure_html
-            )
+            parts += design_verdict_html({"design_id": label, "verdict": entry["verdict"]}, figures)
     parts += [
         "<h2>Methods on the same budget</h2>",
         html_table(COMPARISON_HEADERS, comparison_rows(results), (0,)),

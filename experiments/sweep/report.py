@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from experiments.report_kit.verdict_section import STRIP_PREFIX
 from experiments.sweep.report_figures import (
     best_figure,
     feasible_set_figure,
@@ -30,7 +31,7 @@ from experiments.sweep.report_figures import (
     survivors_figure,
 )
 from experiments.sweep.report_html import html_page
-from experiments.sweep.report_verdicts import STRIP_PREFIX, TRANSITIONS, verdict_figures
+from experiments.sweep.report_verdicts import TRANSITIONS, verdict_figures
 from experiments.sweep.results_db import connect
 from feeders.design import PARAMETER_NAMES
 

@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
 import matplotlib
 
@@ -19,6 +18,7 @@ import numpy as np
 from matplotlib.patches import Patch
 
 from experiments.pictures.scenes import draw_scene, save_figure
+from experiments.report_kit.cells import DASH, cell, number
 from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS, DesignError, DesignParameters
 from feeders.feeder import DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
@@ -29,7 +29,6 @@ NONE_COLOUR = "#c7c7c7"
 LEVEL_COLOURS = {"geometric": "#e6a532", "kinematic": "#3b7dd8", "dynamic": "#2ca02c"}
 EXTRA_COLOURS = ("#9467bd", "#8c564b", "#e377c2", "#17becf")
 PLANNER_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b")
-DASH = "–"
 
 
 def highest_passed(
@@ -45,29 +44,6 @@ def highest_passed(
             break
         passed += 1
     return passed
-
-
-def number(value: Any) -> float | None:
-    """A finite float, or None for None, NaN, infinities and anything not a number."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
-
-
-def cell(value: Any, spec: str = ".3g") -> str:
-    """A table cell's text: integers as they are, floats by ``spec``, a dash when unknown."""
-    if value is None:
-        return DASH
-    if isinstance(value, (bool, np.bool_)):
-        return str(bool(value))
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    x = number(value)
-    if x is None:
-        return DASH if isinstance(value, float) else str(value)
-    return format(x, spec)
 
 
 def _level_colour(index: int, level: str) -> str:

@@ -7,56 +7,13 @@ from __future__ import annotations
 
 import html
 import time
-from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
-from experiments.sweep.report_figures import DASH, MAX_BEST_DRAWN, cell, number
+from experiments.report_kit.cells import DASH, cell, interval, number
+from experiments.report_kit.page import STYLE, figure_html, html_table
+from experiments.sweep.report_figures import MAX_BEST_DRAWN
 from experiments.sweep.report_verdicts import verdict_html
 from feeders.design import PARAMETER_NAMES
-
-STYLE = """
-body { font-family: sans-serif; margin: 2em; max-width: 1200px; color: #222; }
-table { border-collapse: collapse; margin: 0.5em 0 1.5em 0; font-size: 0.9em; }
-th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
-th { background: #f0f0f0; }
-td.text { text-align: left; }
-img { max-width: 100%; border: 1px solid #eee; margin: 0.5em 0; }
-p.note { color: #666; }
-"""
-
-
-def _interval(ci: Any, spec: str = ".2f") -> str:
-    if not isinstance(ci, (list, tuple)) or len(ci) != 2:
-        return DASH
-    low, high = number(ci[0]), number(ci[1])
-    if low is None or high is None:
-        return DASH
-    return f"[{format(low, spec)}, {format(high, spec)}]"
-
-
-def html_table(
-    headers: Sequence[str], rows: list[list[str]], text_columns: Sequence[int] = ()
-) -> str:
-    """An HTML table; every cell is escaped here (callers pass plain text)."""
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
-    body = []
-    for row in rows:
-        cells = "".join(
-            f'<td class="text">{html.escape(c)}</td>'
-            if k in text_columns
-            else f"<td>{html.escape(c)}</td>"
-            for k, c in enumerate(row)
-        )
-        body.append(f"<tr>{cells}</tr>")
-    return f"<table>\n<tr>{head}</tr>\n" + "\n".join(body) + "\n</table>"
-
-
-def figure_html(figures: dict[str, Path], name: str, alt: str) -> str:
-    if name not in figures:
-        return ""
-    src = f"figures/{figures[name].name}"
-    return f'<p><img src="{html.escape(src)}" alt="{html.escape(alt)}"></p>'
 
 
 def _speedup_text(speedup: dict | None) -> str:
@@ -68,8 +25,8 @@ def _speedup_text(speedup: dict | None) -> str:
     return (
         f"The ladder cost {cell(ladder_cost)} s of worker time; evaluating every design at "
         f"{speedup.get('top_level') or 'the top level'} alone would cost about "
-        f"{cell(dynamic_cost)} s (95% CI {_interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
-        f"a speed-up of {cell(factor)}x (95% CI {_interval(speedup.get('speedup_ci'), '.3g')}), "
+        f"{cell(dynamic_cost)} s (95% CI {interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
+        f"a speed-up of {cell(factor)}x (95% CI {interval(speedup.get('speedup_ci'), '.3g')}), "
         f"estimated on {cell(speedup.get('holdout_n'))} holdout designs."
     )
 
@@ -82,9 +39,9 @@ def _pruning_table(rows: list[dict]) -> str:
                 str(row.get("level", "")),
                 *(cell(row.get(k)) for k in ("n", "tp", "fp", "fn", "tn")),
                 cell(row.get("precision"), ".3f"),
-                _interval(row.get("precision_ci")),
+                interval(row.get("precision_ci")),
                 cell(row.get("recall"), ".3f"),
-                _interval(row.get("recall_ci")),
+                interval(row.get("recall_ci")),
             ]
             for row in rows
         ],
@@ -157,7 +114,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     )
     parts.append(figure_html(figures, "survivors", "survivors per level"))
 
-    parts += verdict_html(summary, figures, html_table, figure_html)
+    parts += verdict_html(summary, figures)
 
     parts.append("<h2>Speed-up of the ladder</h2>")
     parts.append(f"<p>{e(_speedup_text(summary.get('speedup')))}</p>")
@@ -229,7 +186,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
                     [
                         cell(row.get("design_id")),
                         cell(((row.get("verdict") or {}).get("both") or {}).get("p"), ".3f"),
-                        _interval(((row.get("verdict") or {}).get("both") or {}).get("interval")),
+                        interval(((row.get("verdict") or {}).get("both") or {}).get("interval")),
                         cell(row.get("exit_time_s"), ".3f"),
                         *(cell(v, ".4g") for v in (row.get("values") or [])),
                     ]

@@ -11,48 +11,32 @@ cannot be built, or a summary without a passive rung, gets a sentence, never an 
 from __future__ import annotations
 
 import html
-from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from experiments.drop.outcomes import HEAVY_DOWN
 from experiments.pictures.scenes import save_figure
-from experiments.sweep.report_figures import DASH, MAX_BEST_DRAWN, cell, number
+from experiments.report_kit.cells import DASH, cell, interval
+from experiments.report_kit.page import figure_html, html_table
+from experiments.report_kit.verdict_section import (
+    OTHER_COLOUR,
+    OUTCOME_COLOURS,
+    design_verdict_html,
+    strip_name,
+)
+from experiments.sweep.report_figures import MAX_BEST_DRAWN
 from feeders.feeder import ORIENTATIONS
 
-STRIP_PREFIX = "strip_design"
 TRANSITIONS = "transitions"
-OUTCOME_COLOURS = {
-    HEAVY_DOWN: "#2ca02c",
-    "heavy end up": "#d62728",
-    "jammed in the exit chute": "#ff7f0e",
-    "wedged across the funnel": "#e6a532",
-    "caught on the pin": "#9467bd",
-    "wedged at the lip": "#8c564b",
-    "stuck in the input chute": "#e377c2",
-    "stopped in the cavity": "#7f7f7f",
-    "still moving at t_max": "#17becf",
-    "left the bounds": "#000000",
-}
-OTHER_COLOUR = "#c7c7c7"
 
 
 def with_verdicts(summary: dict) -> list[dict]:
     """The best designs that carry a passive verdict, in the summary's order, at most
     ``MAX_BEST_DRAWN``."""
     return [b for b in summary.get("best") or [] if "verdict" in b][:MAX_BEST_DRAWN]
-
-
-def strip_name(design_id: Any) -> str:
-    """The figure name of a design's strip: a sweep's design id, or a label (``optimum``)."""
-    if isinstance(design_id, str):
-        return f"{STRIP_PREFIX}_{design_id}"
-    return f"{STRIP_PREFIX}{int(design_id):06d}"
 
 
 def verdict_figures(summary: dict, figures_dir: Path) -> dict[str, Path]:
@@ -130,23 +114,8 @@ def transitions_figure(summary: dict, best: list[dict], path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def _interval(ci: Any) -> str:
-    if not isinstance(ci, (list, tuple)) or len(ci) != 2:
-        return DASH
-    low, high = number(ci[0]), number(ci[1])
-    if low is None or high is None:
-        return DASH
-    return f"[{low:.2f}, {high:.2f}]"
-
-
-def verdict_html(
-    summary: dict,
-    figures: dict[str, Path],
-    table: Callable[..., str],
-    figure: Callable[[dict[str, Path], str, str], str],
-) -> list[str]:
-    """The page's sections on the passive verdict (empty without a passive rung); ``table``
-    and ``figure`` are the page's own builders (they escape every cell)."""
+def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
+    """The page's sections on the passive verdict (empty without a passive rung)."""
     e = html.escape
     passive = summary.get("passive")
     if not passive:
@@ -159,7 +128,7 @@ def verdict_html(
         "as soon as that is decided either way.</p>"
     )
     parts.append(
-        table(
+        html_table(
             [
                 "evaluated",
                 "works",
@@ -181,7 +150,7 @@ def verdict_html(
                     cell(passive.get("undecided")),
                     cell(passive.get("degenerate")),
                     cell(passive.get("works_fraction"), ".3f"),
-                    _interval(passive.get("works_ci")),
+                    interval(passive.get("works_ci")),
                     str(passive.get("works_basis", DASH)),
                     cell(passive.get("drops")),
                     cell(passive.get("mean_trials"), ".3g"),
@@ -200,15 +169,15 @@ def verdict_html(
             "would keep (recall), and its speed-up over the passive verdict alone.</p>"
         )
         parts.append(
-            table(
+            html_table(
                 ["pipeline", "s/design", "95% CI", "recall", "95% CI", "speed-up", "designs"],
                 [
                     [
                         " → ".join(str(r) for r in p.get("rungs") or []),
                         cell(p.get("cost_s"), ".3g"),
-                        _interval(p.get("cost_ci")),
+                        interval(p.get("cost_ci")),
                         cell(p.get("recall"), ".2f"),
-                        _interval(p.get("recall_ci")),
+                        interval(p.get("recall_ci")),
                         cell(p.get("speedup"), ".2f"),
                         cell(p.get("n")),
                     ]
@@ -228,72 +197,7 @@ def verdict_html(
         "The strips are each design's nominal drops (no perturbation), as the paper's Figs. "
         "10-11.</p>"
     )
-    parts.append(figure(figures, TRANSITIONS, "transition matrices of the designs that work"))
+    parts.append(figure_html(figures, TRANSITIONS, "transition matrices of the designs that work"))
     for entry in best:
-        parts += design_verdict_html(entry, figures, table, figure)
-    return parts
-
-
-def design_verdict_html(entry, figures, table, figure) -> list[str]:
-    v = entry["verdict"]
-    d = entry["design_id"]
-    rows = []
-    for orientation in ORIENTATIONS:
-        per = (v.get("orientations") or {}).get(orientation) or {}
-        rows.append(
-            [
-                orientation.replace("_", " "),
-                f"{cell(per.get('successes'))} / {cell(v.get('drops'))}",
-                cell(per.get("p"), ".3f"),
-                _interval(per.get("interval")),
-                cell(per.get("mean_exit_time_s"), ".3f"),
-            ]
-        )
-    both = v.get("both") or {}
-    rows.append(
-        [
-            "both",
-            f"{cell(both.get('successes'))} / {cell(v.get('drops'))}",
-            cell(both.get("p"), ".3f"),
-            _interval(both.get("interval")),
-            DASH,
-        ]
-    )
-    parts = [
-        f"<h4>Design {html.escape(cell(d))}: {html.escape(str(v.get('decision', DASH)))}</h4>",
-        table(["entry", "successes", "P", "95% CI", "mean exit time (s)"], rows, (0,)),
-    ]
-    matrix = v.get("transitions") or {}
-    outcomes = [
-        c
-        for c in OUTCOME_COLOURS.keys() | {c for m in matrix.values() for c in m}
-        if any((matrix.get(o) or {}).get(c, 0) > 0 for o in ORIENTATIONS)
-    ]
-    outcomes.sort(key=lambda c: list(OUTCOME_COLOURS).index(c) if c in OUTCOME_COLOURS else 99)
-    if outcomes:
-        drops_in = sum(sum((matrix.get(o) or {}).values()) for o in ORIENTATIONS)
-        out_right = sum((matrix.get(o) or {}).get(HEAVY_DOWN, 0) for o in ORIENTATIONS)
-        parts.append(
-            table(
-                ["entry", *outcomes],
-                [
-                    [
-                        o.replace("_", " "),
-                        *(cell((matrix.get(o) or {}).get(c, 0)) for c in outcomes),
-                    ]
-                    for o in ORIENTATIONS
-                ],
-                (0,),
-            )
-        )
-        efficiency = out_right / drops_in if drops_in else None
-        parts.append(
-            f'<p class="note">Selector efficiency (parts out heavy end down / parts in): '
-            f"{html.escape(cell(efficiency, '.3f'))}.</p>"
-        )
-    name = strip_name(d)
-    if name in figures:
-        parts.append(figure(figures, name, f"nominal drops of design {d} from both entries"))
-    else:
-        parts.append("<p>No strip: the design cannot be built with this sweep's feeder.</p>")
+        parts += design_verdict_html(entry, figures)
     return parts
