@@ -49,5 +49,7 @@ SUBCOMMANDS: tuple[Subcommand, ...] = (
                "the design optimisation (Eq. 10-11), robust to perturbation; resumes when "
                "started again"),
     Subcommand("stress", "experiments.stress.command", "the numerical stress suite of the levels"),
+    Subcommand("margins", "experiments.cli.margins",
+               "a design's tolerance margins: per parameter, friction and part dimension"),
 )
 # fmt: on

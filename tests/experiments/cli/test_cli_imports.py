@@ -112,6 +112,13 @@ BAD_VALUES = [
     (("optimize", "--from", "/nonexistent-sweep"), "no results.sqlite"),
     (("stress", "--cases", "-1"), "--cases = -1"),
     pytest.param(("feasibility", "--designs", "-1"), "--designs = -1"),
+    (("margins", "--drops", "0"), "--drops = 0"),
+    (("margins", "--target", "1.5"), "--target = 1.5"),
+    (("margins", "--seed", "-1"), "--seed = -1"),
+    (("margins", "--workers", "0"), "--workers = 0"),
+    (("margins", "--design", "nope"), "unknown design preset 'nope'"),
+    (("margins", "--design", "1,2,3"), "a design has 12 values"),
+    (("margins", "--out", "/proc/partfeeder-test"), "--out"),
 ]
 
 

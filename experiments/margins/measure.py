@@ -1,0 +1,198 @@
+"""P(both) at one value of one axis, with common random numbers, and one axis's margin.
+
+Every value of an axis is judged on the same trials: trial i uses the verdict's draw i
+(:func:`experiments.drop.perturbations.draw` with the same seed: entry pose and velocity per
+entry, friction factor, manufacturing factor of each design parameter), except the
+perturbation of the axis varied, which is set to the value exactly (a design parameter made
+without tolerance, mu without its per-part factor; the part is not perturbed by the verdict).
+So two values differ by the axis only, and the comparison between them is not sampling noise.
+A trial whose drop ends inside a wall (a fault of the simulation) is left out and the next
+draw taken, as the verdict does.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from experiments.drop.perturbations import DropDraw, Perturbations, toleranced
+from experiments.drop.verdict import run_trial
+from experiments.drop.verdict_settings import VerdictSettings
+from experiments.margins.axes import DESIGN, FRICTION, PART, Axis
+from experiments.margins.search import Bracket, Estimate, bracket, required
+from feeders.design import PARAMETER_NAMES, DesignParameters
+from feeders.feeder import ORIENTATIONS, build_feeder
+from feeders.part import Peg
+from feeders.scene import InputSet, Scene
+
+
+@dataclass(frozen=True)
+class Subject:
+    """The design whose margins are measured, as plain data for a worker: the 12 values, the
+    part as two halves (length, width, mass, heavy half's share), mu and the feeder's other
+    options."""
+
+    design: DesignParameters
+    length: float
+    width: float
+    mass: float
+    heavy_fraction: float
+    friction: float
+    gravity: tuple[float, float] = (0.0, -9.81)
+    restitution: float = 0.3
+    inputs: InputSet = field(default_factory=InputSet)
+    name: str = "feeder"
+
+    @classmethod
+    def of_scene(cls, scene: Scene) -> Subject:
+        """The subject of a feeder scene; the part's mass split from its centre-of-mass
+        offset, c = (h - 1/2) L / 2 (:func:`feeders.part.two_density_moments`)."""
+        if scene.design is None:
+            raise ValueError("margins need a feeder design, not a free-form scene")
+        part = scene.part
+        heavy = min(1.0, max(0.5, 0.5 + 2.0 * part.com_offset / part.length))
+        return cls(
+            scene.design,
+            part.length,
+            part.width,
+            part.mass,
+            heavy,
+            scene.friction,
+            tuple(scene.gravity),  # type: ignore[arg-type]
+            scene.restitution,
+            scene.inputs,
+            scene.name,
+        )
+
+    def value(self, axis: Axis) -> float:
+        """The nominal value of ``axis``."""
+        if axis.kind == DESIGN:
+            return float(getattr(self.design, axis.name))
+        if axis.kind == FRICTION:
+            return self.friction
+        return float(getattr(self, axis.name))
+
+
+@dataclass(frozen=True)
+class MarginSettings:
+    """How margins are measured: ``drops`` trials per value (each a drop from every entry),
+    the ``target`` P(both), the draws' ``seed``, the dynamic level's step h (s) and longest
+    drop (s), and the verdict's perturbations."""
+
+    drops: int = 20
+    target: float = 0.9
+    seed: int = 0
+    step: float = 1e-3
+    t_max: float = 10.0
+    perturbations: Perturbations = field(default_factory=Perturbations)
+
+    def verdict_settings(self) -> VerdictSettings:
+        return VerdictSettings(
+            target=self.target, step=self.step, t_max=self.t_max, perturbations=self.perturbations
+        )
+
+
+def made_at(subject: Subject, axis: Axis, value: float) -> Callable[[DropDraw], Scene]:
+    """The feeder as made for one trial's draw with ``axis`` at ``value`` exactly."""
+    design, friction = subject.design, subject.friction
+    length, width, heavy = subject.length, subject.width, subject.heavy_fraction
+    exact = -1
+    if axis.kind == DESIGN:
+        design = dataclasses.replace(design, **{axis.name: value})
+        exact = PARAMETER_NAMES.index(axis.name)
+    elif axis.kind == PART:
+        length = value if axis.name == "length" else length
+        width = value if axis.name == "width" else width
+        heavy = value if axis.name == "heavy_fraction" else heavy
+    part = Peg.two_density(length, width, subject.mass, heavy)
+
+    def make(d: DropDraw) -> Scene:
+        factors = tuple(1.0 if k == exact else f for k, f in enumerate(d.design_factors))
+        mu = value if axis.kind == FRICTION else friction * d.friction_factor
+        return build_feeder(
+            toleranced(design, factors),
+            part,
+            inputs=subject.inputs,
+            friction=mu,
+            gravity=subject.gravity,
+            name=subject.name,
+            restitution=subject.restitution,
+        )
+
+    return make
+
+
+def estimate(subject: Subject, axis: Axis, value: float, settings: MarginSettings) -> Estimate:
+    """P(both) with ``axis`` at ``value`` over the first ``settings.drops`` trials (draws
+    0, 1, ... of ``settings.seed``, faults skipped), stopped as soon as so many failed that
+    the target can no longer be reached (the same inside/outside answer, fewer drops)."""
+    make = made_at(subject, axis, value)
+    verdict = settings.verdict_settings()
+    planned = settings.drops
+    allowed = planned - required(settings.target, planned)  # failures the target allows
+    successes = counted = index = 0
+    while counted < planned and index < 2 * planned:
+        trial = run_trial(make, ORIENTATIONS, verdict, settings.seed, index)
+        index += 1
+        if trial.fault:
+            continue
+        counted += 1
+        successes += all(trial.success)
+        if counted - successes > allowed:
+            break
+    return Estimate(value, successes, counted, planned)
+
+
+@dataclass(frozen=True)
+class AxisJob:
+    """One axis of one subject: a job for a worker (plain data)."""
+
+    subject: Subject
+    axis: Axis
+    settings: MarginSettings
+
+
+@dataclass(frozen=True)
+class AxisMargin:
+    """One axis's margin: the nominal estimate, the low and high sides (None when the
+    nominal itself is outside: no margin), the box searched, and the cost."""
+
+    axis: Axis
+    nominal: Estimate
+    low: Bracket | None
+    high: Bracket | None
+    box: tuple[float, float]
+    wall_time: float
+
+    @property
+    def interval(self) -> tuple[float, float] | None:
+        if self.low is None or self.high is None:
+            return None
+        return self.low.limit, self.high.limit
+
+    @property
+    def drops(self) -> int:
+        sides = [s.drops for s in (self.low, self.high) if s is not None]
+        return self.nominal.drops + sum(sides)
+
+
+def measure_axis(job: AxisJob) -> AxisMargin:
+    """The margin of ``job.axis``: the nominal estimate, then the search toward each end of
+    the box (Table 2's, widened to hold a nominal outside it)."""
+    t0 = time.perf_counter()
+    subject, axis, settings = job.subject, job.axis, job.settings
+    nominal_value = subject.value(axis)
+    box = (min(axis.low, nominal_value), max(axis.high, nominal_value))
+
+    def evaluate(value: float) -> Estimate:
+        return estimate(subject, axis, value, settings)
+
+    nominal = evaluate(nominal_value)
+    low = high = None
+    if nominal.inside(settings.target):
+        width = box[1] - box[0]
+        low = bracket(evaluate, nominal, box[0], width, settings.target)
+        high = bracket(evaluate, nominal, box[1], width, settings.target)
+    return AxisMargin(axis, nominal, low, high, box, time.perf_counter() - t0)
