@@ -112,7 +112,7 @@ def text_table(data: dict) -> str:
     ]
     if not data["works"]:
         lines.append("the design does not work at nominal: no margins")
-        return "\n".join(lines)
+        return "\n".join(line.rstrip() for line in lines)
     lines.append(
         f"margins: values where the estimated P(both) over {data['drops_per_value']} "
         f"drops per entry (the same draws at every value) stays >= {data['target']:g}, "
@@ -143,4 +143,4 @@ def text_table(data: dict) -> str:
         f"cost: {c['trials']} trials ({c['drops']} drops), {c['wall_time_s']:.1f} s on "
         f"{c['workers']} worker(s)"
     )
-    return "\n".join(lines)
+    return "\n".join(line.rstrip() for line in lines)
