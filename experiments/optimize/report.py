@@ -15,12 +15,15 @@ import html
 import math
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from experiments.report_kit.cells import DASH, cell
+from experiments.report_kit.cells import DASH, cell, number
 from experiments.report_kit.page import STYLE, figure_html, html_table
 from experiments.report_kit.verdict_section import design_verdict_html, strip_name
 from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 CONVERGENCE = "convergence"
 METHOD_COLOURS = {
@@ -32,15 +35,49 @@ METHOD_COLOURS = {
 LABELS = ("optimum", "table3")
 
 
-def convergence_figure(results: dict[str, Any], path: Path) -> Path:
-    """Of the best design so far, against evaluations: the robust objective R, P(both) over
-    the K draws and the mean Eq. 10 G; one line per run, coloured by method."""
-    from matplotlib import pyplot as plt
+NEAR_THE_END = 0.9  # the best found after this fraction of a run's budget: not converged
 
+
+def convergence_figure(results: dict[str, Any], path: Path) -> Path:
+    """The convergence of every run (see :func:`convergence_plot`), as a PNG at ``path``."""
     from experiments.pictures.scenes import save_figure
 
-    fig, (ax_r, ax_p, ax_g) = plt.subplots(1, 3, figsize=(15, 4))
+    return save_figure(convergence_plot(results), path)
+
+
+def p_both_flat(results: dict[str, Any]) -> bool:
+    """Whether P(both) over the K draws of the best design so far never changed, in any run
+    (its panel would be a flat line: the figure leaves it out and the page says it)."""
+    values = [c[2] for run in results["runs"] for c in run["curve"]]
+    return bool(values) and max(values) - min(values) <= 1e-12
+
+
+def objective_scale(values: list[float]) -> str:
+    """The R axis's scale: ``symlog`` (linear below 1, logarithmic above) when R spans
+    failed trials (several units above 1), else ``linear``: R below 1 is the Gbar term
+    alone, and a log axis over it shows ticks such as ``4.04842 x 10^-1``."""
+    finite = [v for v in values if number(v) is not None]
+    if not finite or max(finite) <= 2.0:
+        return "linear"
+    return "symlog"
+
+
+def convergence_plot(results: dict[str, Any]) -> Figure:
+    """Of the best design so far, against evaluations: the robust objective R, P(both) over
+    the K draws (left out when flat) and the mean Eq. 10 G; one line per run, coloured by
+    method, with the evaluation where each run found its best marked."""
+    from matplotlib import pyplot as plt
+
+    from experiments.report_kit.figures import PLAIN_TICKS
+
+    flat = p_both_flat(results)
+    panels = 2 if flat else 3
+    fig, axes = plt.subplots(1, panels, figsize=(10.0, 4.0), squeeze=False)
+    ax_r, ax_g = axes[0, 0], axes[0, -1]
+    ax_p = None if flat else axes[0, 1]
     seen = set()
+    all_r = []
+    found: str | None = "where its best was found"
     for run in results["runs"]:
         curve = run["curve"]
         if not curve:
@@ -49,28 +86,74 @@ def convergence_figure(results: dict[str, Any], path: Path) -> Path:
         colour = METHOD_COLOURS.get(run["method"], "#444")
         label = None if run["method"] in seen else run["method"]
         seen.add(run["method"])
+        all_r += [c[1] for c in curve]
         ax_r.step(n, [c[1] for c in curve], where="post", color=colour, label=label)
-        ax_p.step(n, [c[2] for c in curve], where="post", color=colour, label=label)
+        if ax_p is not None:
+            ax_p.step(n, [c[2] for c in curve], where="post", color=colour, label=label)
         g = [math.nan if c[3] is None else c[3] for c in curve]
         ax_g.step(n, g, where="post", color=colour, label=label)
+        best = run.get("best")
+        if best is not None:
+            at = int(best["at"])
+            ax_r.plot([at], [curve[at - 1][1]], "o", color=colour, ms=6, label=found)
+            found = None
     k = results["objective"]["trials"]
-    ax_r.set_yscale("symlog", linthresh=1.0)
-    ax_r.set_xlabel("evaluations")
-    ax_r.set_ylabel("best R = failed trials + Gbar / (Gbar + 10 s)")
-    ax_r.set_title(f"robust objective over K = {k} fixed draws", fontsize=10)
-    ax_p.set_xlabel("evaluations")
-    ax_p.set_ylabel("P(both) of the best design, K draws")
-    ax_p.set_ylim(-0.02, 1.02)
-    ax_p.set_title("success from both entries", fontsize=10)
-    ax_g.set_xlabel("evaluations")
-    ax_g.set_ylabel("mean G of the best design (Eq. 10)")
-    ax_g.set_title("its mean Eq. 10 objective over the K draws", fontsize=10)
-    for ax in (ax_r, ax_p, ax_g):
+    scale = objective_scale(all_r)
+    if scale == "symlog":
+        ax_r.set_yscale("symlog", linthresh=1.0)
+        ax_r.set_ylim(bottom=0.0)  # the linear part below 1 gets its own tick, 0
+    ax_r.yaxis.set_major_formatter(PLAIN_TICKS)
+    ax_r.set_ylabel("best R (failed trials + Gbar / (Gbar + 10 s))", fontsize=9)
+    ax_r.set_title(f"robust objective, K = {k} fixed draws", fontsize=10)
+    if ax_p is not None:
+        ax_p.set_ylabel("P(both) of the best design, K draws", fontsize=9)
+        ax_p.set_ylim(-0.02, 1.02)
+        ax_p.set_title("success from both entries", fontsize=10)
+    ax_g.yaxis.set_major_formatter(PLAIN_TICKS)
+    ax_g.set_ylabel("mean G of the best design (s, Eq. 10)", fontsize=9)
+    ax_g.set_title("its mean Eq. 10 objective, K draws", fontsize=10)
+    for ax in axes[0]:
+        ax.set_xlabel("evaluations", fontsize=9)
+        ax.tick_params(labelsize=9)
         ax.grid(alpha=0.3)
     if seen:
-        ax_r.legend(fontsize=8)
-    fig.tight_layout()
-    return save_figure(fig, path)
+        ax_r.legend(fontsize=9)
+    if flat:
+        fig.suptitle(flat_p_sentence(results), fontsize=9)
+    return fig
+
+
+def flat_p_sentence(results: dict[str, Any]) -> str:
+    """What the left-out P(both) panel would have shown: its one value."""
+    values = [c[2] for run in results["runs"] for c in run["curve"]]
+    shown = cell(values[0], ".3f") if values else DASH
+    return (
+        f"P(both) of the best design over the K draws was {shown} at every evaluation of every "
+        "run (its panel is left out)"
+    )
+
+
+def convergence_notes(results: dict[str, Any]) -> list[str]:
+    """Per run, a sentence when its best was found in the last tenth of its budget (the run
+    had not converged: more evaluations might find better) or was its first evaluation (the
+    start was never improved on)."""
+    notes = []
+    for run in results["runs"]:
+        best = run.get("best")
+        if best is None:
+            continue
+        at, budget = int(best["at"]), int(run["budget"])
+        name = f"{run['method']}, seed {run['seed']}"
+        if at > NEAR_THE_END * budget and budget > 1:
+            notes.append(
+                f"{name}: not converged: the best was found at evaluation {at} of {budget}."
+            )
+        elif at == 1 and run["evaluations"] > 1:
+            notes.append(
+                f"{name}: the best is its first evaluation: none of the other "
+                f"{run['evaluations'] - 1} improved on it."
+            )
+    return notes
 
 
 def strip_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[str, Path]:
@@ -274,7 +357,9 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
     parts += [
         "<h2>Methods on the same budget</h2>",
         html_table(COMPARISON_HEADERS, comparison_rows(results), (0,)),
+        *([f'<p class="note">{e(flat_p_sentence(results))}.</p>'] if p_both_flat(results) else []),
         figure_html(figures, CONVERGENCE, "convergence of every run"),
+        *(f'<p class="note">{e(note)}</p>' for note in convergence_notes(results)),
         "</body></html>",
     ]
     return "\n".join(parts)

@@ -15,10 +15,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from experiments.pictures.scenes import draw_scene, save_figure
 from experiments.report_kit.cells import DASH, cell, number
+from experiments.report_kit.figures import empty_plot
 from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS, DesignError, DesignParameters
 from feeders.feeder import DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
@@ -52,10 +55,7 @@ def _level_colour(index: int, level: str) -> str:
 
 def _empty_figure(path: Path, message: str, size: tuple[float, float] = (6.0, 2.5)) -> Path:
     """A figure that says why there is nothing to draw (the page keeps its layout)."""
-    fig, ax = plt.subplots(figsize=size)
-    ax.text(0.5, 0.5, message, ha="center", va="center", fontsize=11, color="#555555")
-    ax.axis("off")
-    return save_figure(fig, path)
+    return save_figure(empty_plot(message, size), path)
 
 
 def survivors_figure(summary: dict, path: Path) -> Path:
@@ -91,71 +91,87 @@ def survivors_figure(summary: dict, path: Path) -> Path:
 
 
 def feasible_set_figure(summary: dict, ladder: list[str], data: dict, path: Path) -> Path:
-    """The feasible set Z_F in design space (as the paper's Fig. 2): a scatter matrix of the
-    12 parameters (lower triangle; stacked histograms on the diagonal), each design coloured
-    by the highest level of the ladder it passed, axes limited to Table 2's box."""
-    values = data["values"]
-    if len(values) == 0:
+    """The feasible set Z_F in design space (as the paper's Fig. 2), drawn by
+    :func:`feasible_set_plot`; a database without designs gets a sentence."""
+    if len(data["values"]) == 0:
         return _empty_figure(path, "no designs in the results database yet")
+    return save_figure(feasible_set_plot(summary, ladder, data), path)
+
+
+def feasible_set_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
+    """Which designs pass, and where they lie in Table 2's box: parallel coordinates of the
+    12 parameters (each axis Table 2's range of one parameter, bottom to top), one line per
+    design. Designs that fail the first rung are thin grey lines behind; the others are thick
+    lines with markers, coloured by the highest rung they passed with every rung below it (the
+    paper's Z_F is the top one), so a few that pass among many that fail stand out."""
+    values = np.asarray(data["values"], dtype=float)
     passed = np.array([highest_passed(i, ladder, data["status"]) for i in data["ids"]])
-    classes = ["none", *ladder]
+    classes = ["fails the first rung", *ladder]
     colours = [NONE_COLOUR] + [_level_colour(k, level) for k, level in enumerate(ladder)]
-    n = len(PARAMETER_NAMES)
-    fig = plt.figure(figsize=(14, 14))
-    for i in range(n):  # row: the y parameter
-        for j in range(i + 1):  # column: the x parameter (lower triangle: half the axes)
-            ax = fig.add_subplot(n, n, i * n + j + 1)
-            xlim = TABLE2_BOUNDS[PARAMETER_NAMES[j]]
-            if i == j:
-                ax.hist(
-                    [values[passed == k, j] for k in range(len(classes))],
-                    bins=12,
-                    range=xlim,
-                    stacked=True,
-                    color=colours,
-                )
-                ax.set_yticks([])
+    low = np.array([TABLE2_BOUNDS[n][0] for n in PARAMETER_NAMES])
+    high = np.array([TABLE2_BOUNDS[n][1] for n in PARAMETER_NAMES])
+    unit = (values - low) / (high - low)
+    x = np.arange(len(PARAMETER_NAMES))
+    fig, ax = plt.subplots(figsize=(10.0, 5.4))
+    for k in range(len(PARAMETER_NAMES)):
+        ax.plot([k, k], [0.0, 1.0], color="#888888", lw=0.8, zorder=1)
+        for y, bound, va in ((-0.05, low[k], "top"), (1.05, high[k], "bottom")):
+            ax.text(k, y, f"{bound:g}", ha="center", va=va, fontsize=9, color="#333333")
+    for k in range(len(classes)):  # higher rungs drawn last, on top
+        chosen = np.flatnonzero(passed == k)
+        for row in chosen:
+            if k == 0:
+                ax.plot(x, unit[row], color=colours[k], lw=0.8, alpha=0.7, zorder=2)
             else:
-                for k in range(len(classes)):  # higher levels drawn last, on top
-                    chosen = passed == k
-                    if chosen.any():
-                        ax.scatter(
-                            values[chosen, j],
-                            values[chosen, i],
-                            s=4,
-                            c=colours[k],
-                            linewidths=0,
-                        )
-                ax.set_ylim(*TABLE2_BOUNDS[PARAMETER_NAMES[i]])
-                ax.locator_params(axis="y", nbins=3)
-            ax.set_xlim(*xlim)
-            ax.locator_params(axis="x", nbins=3)
-            ax.tick_params(labelsize=6, length=2, pad=1)
-            if i == n - 1:
-                ax.set_xlabel(PARAMETER_NAMES[j], fontsize=9)
-            else:
-                ax.set_xticklabels([])
-            if j == 0:
-                ax.set_ylabel(PARAMETER_NAMES[i], fontsize=9)
-            elif i != j:
-                ax.set_yticklabels([])
+                ax.plot(x, unit[row], color=colours[k], lw=2.4, marker="o", ms=6, zorder=3 + k)
+    ax.set_xticks(x, PARAMETER_NAMES, fontsize=10)
+    ax.set_xlim(-0.4, len(PARAMETER_NAMES) - 0.6)
+    ax.set_ylim(-0.14, 1.14)
+    ax.set_yticks([0.0, 0.5, 1.0], ["low", "middle", "high"], fontsize=9)
+    ax.set_ylabel("value within Table 2's range")
+    ax.set_xlabel(
+        "design parameter (a-gy, r: lengths in the paper's units, the peg is 2 x 1; "
+        "theta, alpha: rad)",
+        fontsize=9,
+    )
+    for side in ("top", "right", "left"):
+        ax.spines[side].set_visible(False)
     handles = [
-        Patch(color=colour, label=f"{name} ({int(np.sum(passed == k))})")
+        Line2D(
+            [],
+            [],
+            color=colour,
+            lw=0.8 if k == 0 else 2.4,
+            marker=None if k == 0 else "o",
+            label=f"{name} ({int(np.sum(passed == k))})",
+        )
         for k, (name, colour) in enumerate(zip(classes, colours, strict=True))
     ]
-    fig.legend(
+    ax.legend(
         handles=handles,
-        loc="upper right",
-        bbox_to_anchor=(0.97, 0.95),
-        fontsize=11,
-        title="highest level passed",
-        title_fontsize=11,
+        title="highest rung passed (designs)",
+        fontsize=9,
+        title_fontsize=9,
+        loc="upper left",
+        bbox_to_anchor=(1.0, 1.0),
     )
-    fig.suptitle(
-        f"{summary.get('name', 'sweep')}: feasible set Z_F of {len(values)} designs (Table 2 box)",
-        fontsize=13,
+    ax.set_title(
+        f"{summary.get('name', 'sweep')}: {feasible_set_headline(passed, ladder)}", fontsize=11
     )
-    return save_figure(fig, path, dpi=80)
+    return fig
+
+
+def feasible_set_headline(passed: np.ndarray, ladder: Sequence[str]) -> str:
+    """The design-space figure's title from the counts: how many of the designs pass the
+    first rung and how many the whole ladder."""
+    n = len(passed)
+    if not ladder:
+        return f"{n} designs, no rungs"
+    first = int(np.sum(passed >= 1))
+    top = int(np.sum(passed >= len(ladder)))
+    if len(ladder) == 1:
+        return f"{first} of {n} designs pass {ladder[0]}"
+    return f"{first} of {n} designs pass {ladder[0]}, {top} every rung up to {ladder[-1]}"
 
 
 def _box(ax: plt.Axes, samples: list[list[float]], colours: list[str]) -> None:
@@ -176,34 +192,49 @@ def _box(ax: plt.Axes, samples: list[list[float]], colours: list[str]) -> None:
         patch.set_alpha(0.6)
 
 
+def planner_levels(ladder: Sequence[str], stats: list[dict], runs: list[dict]) -> list[str]:
+    """The levels that have planner runs or statistics, in ladder order (then any others):
+    a rung without planners (the passive verdict) has nothing to compare."""
+    with_planners = {str(r.get("level")) for r in [*stats, *runs] if r.get("planner")}
+    ordered = [level for level in ladder if level in with_planners]
+    return ordered + sorted(with_planners - set(ordered))
+
+
 def planners_figure(summary: dict, ladder: list[str], data: dict, path: Path) -> Path:
-    """Planner comparison per level, as Planner Arena: one column per level, rows with the
-    run time box plots (from the runs table), the solved fraction (from the summary) and
-    the tree size box plots. A planner keeps its colour across levels."""
+    """The planners per level (see :func:`planners_plot`); without runs, a sentence."""
     stats = list(summary.get("planners") or [])
-    levels = list(ladder) or sorted({str(r["level"]) for r in data["runs"]})
-    if not levels:
-        return _empty_figure(path, "no levels in the summary")
+    if not planner_levels(ladder, stats, data["runs"]):
+        return _empty_figure(path, "no planner runs yet")
+    return save_figure(planners_plot(summary, ladder, data), path)
+
+
+PLANNER_ROWS = ("run time (s)", "solved fraction of runs", "tree size (states)")
+
+
+def planners_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
+    """Planner comparison per level, as Planner Arena: one column per level with planner
+    runs (a rung without planners is left out, and the title says so), rows with the run
+    time box plots (from the runs table), the solved fraction (from the summary) and the
+    tree size box plots. A planner keeps its colour across levels."""
+    stats = list(summary.get("planners") or [])
+    levels = planner_levels(ladder, stats, data["runs"])
+    left_out = [level for level in ladder if level not in levels]
     planners: list[str] = []
     for row in [*stats, *data["runs"]]:
         if str(row.get("planner")) not in planners and row.get("planner") is not None:
             planners.append(str(row["planner"]))
     colour_of = {p: PLANNER_COLOURS[k % len(PLANNER_COLOURS)] for k, p in enumerate(planners)}
     fig, axes = plt.subplots(
-        3, len(levels), figsize=(max(4.5, 3.6 * len(levels)), 8.5), squeeze=False
+        3, len(levels), figsize=(min(10.0, max(4.5, 3.0 * len(levels) + 1.0)), 8.0), squeeze=False
     )
+    for row, label in zip(axes, PLANNER_ROWS, strict=True):
+        row[0].set_ylabel(label, fontsize=10)
     for col, level in enumerate(levels):
         runs = [r for r in data["runs"] if r["level"] == level]
         level_stats = {str(s.get("planner")): s for s in stats if s.get("level") == level}
         names = [p for p in planners if p in level_stats or any(r["planner"] == p for r in runs)]
         time_ax, solved_ax, tree_ax = axes[:, col]
-        time_ax.set_title(level, fontsize=10)
-        if not names:
-            for ax in (time_ax, solved_ax, tree_ax):
-                ax.set_xticks([])
-                ax.set_yticks([])
-            solved_ax.text(0.5, 0.5, "no runs yet", ha="center", va="center", color="#555555")
-            continue
+        time_ax.set_title(level, fontsize=11)
         colours = [colour_of[p] for p in names]
         for ax, key in ((time_ax, "time_s"), (tree_ax, "tree_size")):
             samples = [
@@ -217,63 +248,79 @@ def planners_figure(summary: dict, ladder: list[str], data: dict, path: Path) ->
         )
         for k, f in enumerate(fractions):
             label = DASH if f is None else f"{f:.2f}"
-            solved_ax.text(k, (f or 0.0) + 0.02, label, ha="center", fontsize=8)
+            solved_ax.text(k, (f or 0.0) + 0.02, label, ha="center", fontsize=9)
         solved_ax.set_ylim(0, 1.12)
         for ax in (time_ax, solved_ax, tree_ax):
-            ax.set_xticks(range(len(names)), names, fontsize=8)
+            ax.set_xticks(range(len(names)), names, fontsize=9)
             ax.set_xlim(-0.6, len(names) - 0.4)
-            ax.tick_params(axis="y", labelsize=7)
-        if col == 0:
-            time_ax.set_ylabel("run time (s)")
-            solved_ax.set_ylabel("solved fraction")
-            tree_ax.set_ylabel("tree size (states)")
-    fig.suptitle(f"{summary.get('name', 'sweep')}: planners per level", fontsize=11)
-    return save_figure(fig, path)
+            ax.tick_params(axis="y", labelsize=9)
+    title = f"{summary.get('name', 'sweep')}: planners per level"
+    if left_out:
+        title += f"\n({', '.join(left_out)} left out: no planner runs at that rung)"
+    fig.suptitle(title, fontsize=11)
+    return fig
+
+
+def pruning_title(summary: dict, ladder: Sequence[str]) -> str:
+    """The pruning figure's title: what each level is compared against (the summary's
+    truth, the passive verdict when there is one, else the top of the ladder) and on what."""
+    truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
+    n = summary.get("holdout")
+    on = f"the {n} holdout designs" if isinstance(n, int) else "the holdout"
+    return f"each level's verdict vs {truth}'s, on {on}"
 
 
 def pruning_figure(summary: dict, ladder: list[str], path: Path) -> Path:
-    """Precision and recall of each lower level's verdict against the top level's, on the
-    holdout, with their confidence intervals as error bars."""
-    rows = list(summary.get("pruning") or [])
-    if not rows:
+    """Precision and recall per level (see :func:`pruning_plot`); without a holdout, a
+    sentence."""
+    if not summary.get("pruning"):
         return _empty_figure(path, "no holdout: the pruning is not measured")
-    top = ladder[-1] if ladder else "the top level"
-    fig, ax = plt.subplots(figsize=(max(5.0, 2.2 * len(rows) + 2.0), 4.2))
+    return save_figure(pruning_plot(summary, ladder), path)
+
+
+def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
+    """Precision and recall of each level's verdict against the truth's, on the holdout,
+    with their confidence intervals as error bars; an undefined one says why."""
+    rows = list(summary.get("pruning") or [])
+    truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
+    fig, ax = plt.subplots(figsize=(min(10.0, max(5.0, 2.2 * len(rows) + 2.0)), 4.2))
     width = 0.36
     bars = ((-width / 2, "precision", "#6a51a3"), (width / 2, "recall", "#41ab5d"))
+    why = {
+        "precision": "n/a:\npasses none",
+        "recall": f"n/a: none\npass {truth}",
+    }
     for offset, key, colour in bars:
-        labelled = False
         for k, row in enumerate(rows):
             value = number(row.get(key))
             if value is None:
-                ax.text(k + offset, 0.02, "n/a", ha="center", fontsize=9, color="#555555")
+                ax.text(k + offset, 0.03, why[key], ha="center", fontsize=8, color="#555555")
                 continue
             ci = row.get(f"{key}_ci") or [None, None]
             low, high = number(ci[0]), number(ci[1])
             yerr = None
             if low is not None and high is not None:
                 yerr = [[max(0.0, value - low)], [max(0.0, high - value)]]
-            ax.bar(
-                k + offset,
-                value,
-                width,
-                yerr=yerr,
-                capsize=5,
-                color=colour,
-                label=None if labelled else key,
-            )
-            labelled = True
-            ax.text(k + offset, value / 2, f"{value:.2f}", ha="center", fontsize=8, color="w")
+            ax.bar(k + offset, value, width, yerr=yerr, capsize=5, color=colour)
+            if value >= 0.15:
+                ax.text(k + offset, value / 2, f"{value:.2f}", ha="center", fontsize=9, color="w")
+            else:  # above the whisker, clear of it
+                top = high if high is not None else value
+                ax.text(k + offset, top + 0.03, f"{value:.2f}", ha="center", fontsize=9)
     labels = [f"{row.get('level', '?')}\n(n = {cell(row.get('n'))})" for row in rows]
-    ax.set_xticks(range(len(rows)), labels)
+    ax.set_xticks(range(len(rows)), labels, fontsize=10)
     ax.set_xlim(-0.6, len(rows) - 0.4)
     ax.set_ylim(0, 1.25)
     ax.set_yticks(np.linspace(0.0, 1.0, 6))
-    ax.set_ylabel("vs the top level (95% CI)")
-    ax.set_title(f"pruning of the lower levels vs {top}, on the holdout", fontsize=10)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=8, loc="upper center", ncol=2)
-    return save_figure(fig, path)
+    ax.set_ylabel(f"fraction, vs {truth} (95% CI)")
+    ax.set_title(pruning_title(summary, ladder), fontsize=11)
+    ax.legend(
+        handles=[Patch(color=c, label=key) for _, key, c in bars],
+        fontsize=9,
+        loc="upper center",
+        ncol=2,
+    )
+    return fig
 
 
 def best_figure(summary: dict, best: list[dict], path: Path) -> Path:

@@ -171,10 +171,14 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
 
     parts.append("<h2>Feasible set in design space</h2>")
     parts.append(
-        '<p class="note">Every design of the database, coloured by the highest level it passed '
-        "together with every level below it (as the paper's Fig. 2, Z<sub>F</sub>).</p>"
+        '<p class="note">Every design of the database as a line through its 12 parameters, '
+        "each axis Table 2's range of one parameter. Grey: fails the first rung; coloured, "
+        "thick: passed that rung and every rung below it (the top one is the paper's Fig. 2 "
+        "Z<sub>F</sub>).</p>"
     )
-    parts.append(figure_html(figures, "feasible_set", "feasible set: scatter matrix of the design"))
+    parts.append(
+        figure_html(figures, "feasible_set", "feasible set: the designs in parallel coordinates")
+    )
 
     parts.append("<h2>Best designs</h2>")
     best = list(summary.get("best") or [])

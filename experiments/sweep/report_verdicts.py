@@ -17,6 +17,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
 
 from experiments.pictures.scenes import save_figure
 from experiments.report_kit.cells import DASH, cell, interval
@@ -40,18 +41,44 @@ def with_verdicts(summary: dict) -> list[dict]:
 
 
 def verdict_figures(summary: dict, figures_dir: Path) -> dict[str, Path]:
-    """The strips of the best designs' nominal drops and the transition-matrix figure;
+    """The strips of the best designs' nominal drops and, unless every drop ended the same
+    way (then :func:`transitions_sentence` says it), the transition-matrix figure;
     name -> PNG path (a design that cannot be built has no strip)."""
     best = with_verdicts(summary)
     out: dict[str, Path] = {}
     if not best:
         return out
-    out[TRANSITIONS] = transitions_figure(summary, best, figures_dir / f"{TRANSITIONS}.png")
+    if transitions_sentence(best) is None:
+        out[TRANSITIONS] = save_figure(
+            transitions_plot(summary, best), figures_dir / f"{TRANSITIONS}.png"
+        )
     for entry in best:
         path = _strip(summary, entry, figures_dir / f"{strip_name(entry['design_id'])}.png")
         if path is not None:
             out[strip_name(entry["design_id"])] = path
     return out
+
+
+def transitions_sentence(best: list[dict]) -> str | None:
+    """When every drop of every design listed, from both entries, ended in one outcome, the
+    sentence that says so (a chart of identical full bars would say it worse); else None."""
+    outcomes: set[str] = set()
+    drops = 0
+    for entry in best:
+        matrix = (entry.get("verdict") or {}).get("transitions") or {}
+        for orientation in ORIENTATIONS:
+            for outcome, n in (matrix.get(orientation) or {}).items():
+                if n > 0:
+                    outcomes.add(outcome)
+                    drops += n
+    if len(outcomes) != 1 or drops == 0:
+        return None
+    designs = "the design" if len(best) == 1 else f"all {len(best)} designs"
+    return (
+        f"Every one of the {drops} perturbed drops of {designs} that work, from both entries, "
+        f"ended {next(iter(outcomes))}: no drop ended anywhere else, so there is no transition "
+        "chart."
+    )
 
 
 def _strip(summary: dict, entry: dict, path: Path) -> Path | None:
@@ -74,44 +101,50 @@ def _strip(summary: dict, entry: dict, path: Path) -> Path | None:
     return figure
 
 
-def transitions_figure(summary: dict, best: list[dict], path: Path) -> Path:
-    """Per best design and entry orientation, a bar split by where its drops ended."""
+def transitions_plot(summary: dict, best: list[dict]) -> Figure:
+    """Per best design and entry orientation, a bar of its drops split by where they ended,
+    each part labelled with its count; the legend names every outcome drawn."""
     rows: list[tuple[str, dict[str, int]]] = []
     for entry in best:
         matrix = entry["verdict"].get("transitions") or {}
         for orientation in ORIENTATIONS:
             label = f"design {entry['design_id']}, {orientation.replace('_', ' ')}"
             rows.append((label, dict(matrix.get(orientation) or {})))
-    fig, ax = plt.subplots(figsize=(9.0, 0.45 * len(rows) + 1.8))
+    fig, ax = plt.subplots(figsize=(9.5, 0.45 * len(rows) + 1.6))
     seen: set[str] = set()
+    widest = max([sum(c.values()) for _, c in rows] + [1])
     for y, (_, counts) in enumerate(rows):
-        total = sum(counts.values()) or 1
         left = 0.0
-        for outcome, n in counts.items():
+        for outcome, n in sorted(counts.items(), key=lambda kv: _outcome_rank(kv[0])):
             if n <= 0:
                 continue
-            width = n / total
             colour = OUTCOME_COLOURS.get(outcome, OTHER_COLOUR)
             ax.barh(
                 y,
-                width,
+                n,
                 left=left,
                 color=colour,
                 edgecolor="white",
                 label=None if outcome in seen else outcome,
             )
+            if n >= 0.06 * widest:
+                ax.text(left + n / 2, y, str(n), ha="center", va="center", fontsize=9, color="w")
             seen.add(outcome)
-            left += width
-    ax.set_yticks(range(len(rows)), [label for label, _ in rows], fontsize=8)
+            left += n
+    ax.set_yticks(range(len(rows)), [label for label, _ in rows], fontsize=9)
     ax.invert_yaxis()
-    ax.set_xlim(0.0, 1.0)
-    ax.set_xlabel("fraction of drops")
+    ax.set_xlim(0.0, widest)
+    ax.set_xlabel("drops (perturbed, from this entry)")
     ax.set_title(
-        f"{summary.get('name', 'sweep')}: where the part ends (entry orientation -> outcome)",
-        fontsize=10,
+        f"{summary.get('name', 'sweep')}: where the part ends, per design and entry", fontsize=11
     )
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=3)
-    return save_figure(fig, path)
+    ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.0, 1.0), title="ended")
+    return fig
+
+
+def _outcome_rank(outcome: str) -> int:
+    order = list(OUTCOME_COLOURS)
+    return order.index(outcome) if outcome in order else len(order)
 
 
 def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
@@ -197,6 +230,9 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
         "The strips are each design's nominal drops (no perturbation), as the paper's Figs. "
         "10-11.</p>"
     )
+    sentence = transitions_sentence(best)
+    if sentence is not None:
+        parts.append(f"<p>{e(sentence)}</p>")
     parts.append(figure_html(figures, TRANSITIONS, "transition matrices of the designs that work"))
     for entry in best:
         parts += design_verdict_html(entry, figures)
