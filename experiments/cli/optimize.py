@@ -11,7 +11,7 @@ import json
 import sys
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, out_dir
@@ -48,39 +48,47 @@ def add_arguments(opt: argparse.ArgumentParser) -> None:
     opt.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
-class _Bar:
-    """One progress bar over every run's budget, with the best value and P(both) so far."""
+class OptimizeProgress:
+    """Two bars with totals fixed when they start: the evaluations
+    (:func:`experiments.optimize.run.evaluations_total`: starts, every run's budget, table3;
+    a run that converges early jumps to its budget), with the best value and P(both) so far,
+    then the verdicts on fresh draws (the candidates', the optimum's and table3's).
+    ``stream`` None draws on stderr when it is a terminal (tests give a ``StringIO``)."""
 
-    def __init__(self, quiet: bool):
+    def __init__(self, quiet: bool, stream: TextIO | None = None):
         self.quiet = quiet
+        self.stream = stream
         self.bar: Any = None
-        self.trials = 1
 
     def __call__(self, event: str, info: dict[str, Any]) -> None:
         if self.quiet:
             return
-        from tqdm import tqdm
+        from experiments.progress import bar
 
         if event == "start":
-            total = info["starts"] + sum(budget for _, budget in info["runs"])
-            self.bar = tqdm(
-                total=total,
-                desc="optimize",
-                unit="eval",
-                file=sys.stderr,
-                dynamic_ncols=True,
-                disable=None,
-            )
-        elif event == "run" and self.bar is not None:
+            self.bar = bar(info["evaluations"], "optimize", "eval", stream=self.stream)
+        elif event == "verdicts":
+            self.close()
+            desc = f"verdicts ({info['trials']} trials each)"
+            self.bar = bar(info["verdicts"], desc, "verdict", stream=self.stream)
+        elif self.bar is None:
+            return
+        elif event == "run":
             self.bar.set_description(info["run"])
-        elif event == "evaluation" and self.bar is not None:
+        elif event == "run end":
+            self.bar.update(info["unspent"])
+        elif event == "evaluation":
             best = info["best"]
             self.bar.set_postfix(best=f"{best['value']:.4f}", both=best["both"], refresh=False)
+            self.bar.update()
+        elif event == "verdict":
+            self.bar.set_postfix_str(info["label"], refresh=False)
             self.bar.update()
 
     def close(self) -> None:
         if self.bar is not None:
             self.bar.close()
+            self.bar = None
 
 
 def sweep_best_designs(sweep: Path | None) -> list[dict]:
@@ -134,9 +142,10 @@ def run(args: argparse.Namespace) -> int:
     assert out is not None
     from experiments.optimize.report import summary_text, write_report
     from experiments.optimize.run import optimise
+    from experiments.progress import phase
     from experiments.sweep.lock import sweep_lock
 
-    bar = _Bar(args.quiet or args.json)
+    bar = OptimizeProgress(args.quiet or args.json)
     with sweep_lock(out, job="optimize"):
         if args.executor == "local":
             compile_once(["passive"])  # before the workers start: they then only load them
@@ -158,7 +167,8 @@ def run(args: argparse.Namespace) -> int:
         results["wall_time_s"] = time.perf_counter() - t0
         files = {"evaluations": str(out / "evaluations.sqlite")}
         if not args.no_report:
-            files["report"] = str(write_report(out, config, results))
+            with phase("writing the report", args.quiet):
+                files["report"] = str(write_report(out, config, results))
         results["files"] = files
         (out / "summary.json").write_text(json.dumps(results, indent=2))
     if args.json:

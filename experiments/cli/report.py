@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -18,7 +19,14 @@ def add_arguments(report: argparse.ArgumentParser) -> None:
 
 
 # what ``finish`` writes in a sweep directory, beside the figures in ``figures/``
-WRITTEN = ("summary.json", "report.html", "report.html.partial", "figures")
+WRITTEN = (
+    "summary.json",
+    "report.html",
+    "report.html.partial",
+    "figures",
+    "report-cache.json",
+    "report-cache.json.partial",
+)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -53,20 +61,57 @@ def not_writable(out: Path) -> Path | None:
     return None
 
 
-def finish(out: Path, args: argparse.Namespace, extra: dict[str, Any]) -> int:
+def finish(
+    out: Path,
+    args: argparse.Namespace,
+    extra: dict[str, Any],
+    export: Callable[[], object] | None = None,
+) -> int:
     """Summarise the sweep in ``out``, write its report (unless ``--no-report``) and
-    ``summary.json``, and print the summary (a table, or JSON with ``--json``)."""
-    from experiments.sweep.report import write_report
-    from experiments.sweep.summary import summarise, summary_table
+    ``summary.json``, and print the summary (a table, or JSON with ``--json``); ``export``
+    (``run``: OMPL's database from the stored logs) is called first, unless the results have
+    not changed since it last was and ``ompl/benchmark.db`` is there.
 
+    A report is drawn again only when what it shows may have changed: the summary and the
+    report's state are kept in ``report-cache.json`` under a key of the results database's
+    rows and of the code that draws it (:func:`report_key`); with the key unchanged and the
+    report's files as they were written, the stored summary is printed and nothing is
+    redrawn (a finished sweep's ``report`` took 5.0 s on 64 designs, up to 68 s in the
+    issue, all of it figures and nominal drops drawn again)."""
+    from experiments.progress import phase, say
+    from experiments.sweep import results_db
+    from experiments.sweep.summary import summary_table
+
+    quiet = bool(getattr(args, "quiet", False))
     results = out / "results.sqlite"
-    summary = summarise(results)
-    summary.update(extra)
+    results_db.check_database(results)  # refused as the summary would refuse it
+    key = report_key(results)  # before the summary: a key never newer than what it keys
+    cache = _load_cache(out, key)
+    if cache is None:
+        from experiments.sweep.summary import summarise
+
+        cache = {"key": key, "summary": summarise(results), "report": None}
+    if export is not None:
+        if key is None or cache.get("ompl") != key or not (out / OMPL_DATABASE).exists():
+            export()
+        cache["ompl"] = key
+    summary = {**cache["summary"], **extra}
     files = {"results": str(results)}
-    if (out / "ompl" / "benchmark.db").exists():
-        files["ompl_database"] = str(out / "ompl" / "benchmark.db")
+    if (out / OMPL_DATABASE).exists():
+        files["ompl_database"] = str(out / OMPL_DATABASE)
     if not getattr(args, "no_report", False):
-        files["report"] = str(write_report(out, summary, results))
+        page = out / "report.html"
+        if _report_intact(out, cache["report"]):
+            say(f"{page} is up to date (the results have not changed)", quiet)
+        else:
+            from experiments.sweep.report import write_report
+
+            with phase("writing the report", quiet):
+                page = write_report(out, summary, results)
+            cache["report"] = _report_state(out)
+        files["report"] = str(page)
+    if key is not None:
+        _save_cache(out, cache)
     summary["files"] = files
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     if args.json:
@@ -78,3 +123,85 @@ def finish(out: Path, args: argparse.Namespace, extra: dict[str, Any]) -> int:
         for name, path in files.items():
             print(f"{name}: {path}")
     return 0
+
+
+# packages whose code decides what a report shows: a change in any redraws it
+REPORT_CODE = ("experiments", "feeders", "validity", "planners")
+
+
+def report_key(results: Path) -> str | None:
+    """SHA-256 of the rows of the results database at ``results`` (every table by name, its
+    rows in rowid order, as SQLite's dump gives them: a run that finds nothing to do leaves
+    them as they were, though it rewrites the file's header), of the source of
+    :data:`REPORT_CODE` and of the matplotlib and numpy versions; None when the database
+    cannot be read (then nothing is cached, and the summary says what is wrong)."""
+    import hashlib
+    import sqlite3
+    from importlib import metadata, util
+
+    from experiments.database_file import open_read_only
+
+    digest = hashlib.sha256(CACHE_FORMAT.encode())
+    try:
+        db = open_read_only(results)
+        try:
+            for line in db.iterdump():
+                digest.update(line.encode("utf-8", "surrogateescape"))
+                digest.update(b"\n")
+        finally:
+            db.close()
+    except (sqlite3.Error, OSError, UnicodeError):
+        return None
+    for package in REPORT_CODE:
+        spec = util.find_spec(package)
+        for root in (spec.submodule_search_locations or []) if spec else []:
+            for source in sorted(Path(root).rglob("*.py")):
+                digest.update(str(source.relative_to(root)).encode())
+                digest.update(source.read_bytes())
+    for dist in ("matplotlib", "numpy"):
+        digest.update(f"{dist} {metadata.version(dist)}".encode())
+    return digest.hexdigest()
+
+
+CACHE = "report-cache.json"
+OMPL_DATABASE = Path("ompl") / "benchmark.db"
+CACHE_FORMAT = "partfeeder report cache 1"
+
+
+def _load_cache(out: Path, key: str | None) -> dict[str, Any] | None:
+    """The cache of ``out`` when it was written under ``key``, else None."""
+    if key is None:
+        return None
+    try:
+        cache = json.loads((out / CACHE).read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(cache, dict) or cache.get("key") != key:
+        return None
+    if not isinstance(cache.get("summary"), dict):
+        return None
+    return cache
+
+
+def _save_cache(out: Path, cache: dict[str, Any]) -> None:
+    """Written beside and renamed: a reader never sees half of it."""
+    partial = out / f"{CACHE}.partial"
+    partial.write_text(json.dumps(cache, indent=1))
+    os.replace(partial, out / CACHE)
+
+
+def _report_state(out: Path) -> dict[str, Any]:
+    """``report.html`` and each picture in ``figures/`` by size and modification time (ns),
+    as just written."""
+    paths = [out / "report.html", *sorted((out / "figures").glob("*"))]
+    return {
+        str(p.relative_to(out)): [p.stat().st_size, p.stat().st_mtime_ns]
+        for p in paths
+        if p.is_file()
+    }
+
+
+def _report_intact(out: Path, state: Any) -> bool:
+    """The report's files are those written under the cached key: none removed, replaced,
+    edited or added."""
+    return isinstance(state, dict) and bool(state) and _report_state(out) == state

@@ -1,5 +1,5 @@
 """``partfeeder run``: the main job, Halton designs up the ladder of levels through OMPL's
-Benchmark (see :mod:`experiments.sweep`), with a progress bar per level; resumes when started
+Benchmark (see :mod:`experiments.sweep`), with a progress bar over the designs; resumes when started
 again in the same directory."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import argparse
 import sys
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 from experiments.cli.kernels import compile_once
 from experiments.cli.report import finish
@@ -40,51 +40,61 @@ def add_arguments(run: argparse.ArgumentParser) -> None:
     run.add_argument("--quiet", action="store_true", help="no progress bars")
 
 
-class _Bars:
-    """A progress bar per level, with the survivors so far."""
+class SweepProgress:
+    """One bar over the designs, with a fixed total: a design is done when it stops climbing
+    (:func:`experiments.sweep.ladder.run_sweep`'s ``finished``), so the bar's total is the
+    config's number of designs from the start and tqdm's time estimate means something;
+    the number of evaluations is not known in advance (the ladder is adaptive), so each
+    level's feasible and evaluated counts so far are shown beside it. ``stream`` None draws
+    on stderr when it is a terminal (tests give a ``StringIO``)."""
 
-    def __init__(self, quiet: bool):
+    def __init__(self, quiet: bool, stream: TextIO | None = None):
         self.quiet = quiet
-        self.bars: list = []
+        self.stream = stream
+        self.bar: Any = None
+        self.levels: list[str] = []
+        self.evaluated: list[int] = []
         self.feasible: list[int] = []
 
     def __call__(self, event: str, info: dict[str, Any]) -> None:
         if self.quiet:
             return
-        from tqdm import tqdm
-
         if event == "start":
-            levels = info["levels"]
+            from experiments.progress import bar
+
+            self.levels = list(info["levels"])
             done = info["done"]
-            for rung, level in enumerate(levels):
-                n = sum(1 for (_, lv) in done if lv == level)
-                ok = sum(1 for (_, lv), s in done.items() if lv == level and s == "feasible")
-                bar = tqdm(
-                    total=n,
-                    initial=n,
-                    desc=f"{level:>9}",
-                    unit="design",
-                    position=rung,
-                    file=sys.stderr,
-                    dynamic_ncols=True,
-                    leave=True,
-                    disable=None,  # no bars when stderr is not a terminal
-                )
-                self.bars.append(bar)
-                self.feasible.append(ok)
-                bar.set_postfix(feasible=ok, refresh=False)
+            self.evaluated = [sum(1 for (_, lv) in done if lv == level) for level in self.levels]
+            self.feasible = [
+                sum(1 for (_, lv), s in done.items() if lv == level and s == "feasible")
+                for level in self.levels
+            ]
+            self.bar = bar(
+                info["designs"], "designs", "design", initial=info["finished"], stream=self.stream
+            )
+            self.bar.set_postfix_str(self.counts(), refresh=False)
+            return
+        if self.bar is None:
             return
         rung = info["rung"]
-        bar = self.bars[rung]
-        bar.total = (bar.total or 0) + 1
+        self.evaluated[rung] += 1
         if event == "result" and info["status"] == "feasible":
             self.feasible[rung] += 1
-        bar.set_postfix(feasible=self.feasible[rung], refresh=False)
-        bar.update()
+        self.bar.set_postfix_str(self.counts(), refresh=False)
+        if info["finished"]:
+            self.bar.update(1)
+        else:
+            self.bar.refresh()
+
+    def counts(self) -> str:
+        """Each level's feasible / evaluated designs so far."""
+        per_level = zip(self.levels, self.feasible, self.evaluated, strict=True)
+        return "feasible/evaluated " + ", ".join(f"{lv} {k}/{n}" for lv, k, n in per_level)
 
     def close(self) -> None:
-        for bar in self.bars:
-            bar.close()
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
 
 
 def _executor_flags(args: argparse.Namespace) -> None:
@@ -130,7 +140,7 @@ def run(args: argparse.Namespace) -> int:
     from experiments.sweep.lock import sweep_lock
     from experiments.sweep.results_db import ResultsMismatch
 
-    bars = _Bars(args.quiet or args.json)
+    bars = SweepProgress(args.quiet or args.json)
     with sweep_lock(out, job="run"):
         if args.executor == "local":
             compile_once(rung.level for rung in config.ladder)
@@ -150,5 +160,6 @@ def run(args: argparse.Namespace) -> int:
         finally:
             bars.close()
         wall = time.perf_counter() - t0
-        export_ompl(results, out / "ompl")
-        return finish(out, args, {"wall_time_s": wall})
+        return finish(
+            out, args, {"wall_time_s": wall}, export=lambda: export_ompl(results, out / "ompl")
+        )

@@ -92,7 +92,14 @@ def optimise(
         with open_pool(executor, config.workers, config.max_attempts, scheduler) as pool:
             ev = Evaluator(db, pool, config, progress, workers=config.workers)
             if progress:
-                progress("start", {"runs": _runs(config), "starts": len(starts)})
+                progress(
+                    "start",
+                    {
+                        "runs": _runs(config),
+                        "starts": len(starts),
+                        "evaluations": evaluations_total(config, len(starts)),
+                    },
+                )
             _run_methods(ev, config, starts, progress)
             ev.batch(REFERENCE, 1, [_reference()])  # its objective, to compare (cached if a start)
             optimum = _validate(ev, config, _runs(config))
@@ -105,6 +112,14 @@ def optimise(
         return out_results
     finally:
         db.close()
+
+
+def evaluations_total(config: OptimizeConfig, starts: int) -> int:
+    """The evaluations an optimisation asks for, as its progress counts them: the starts,
+    every run's budget (a run that stops early is counted as having spent it) and table3's
+    (compared with the optimum). Fixed before the first evaluation, so a progress bar's total
+    and time estimate hold."""
+    return starts + sum(budget for _, budget in _runs(config)) + 1
 
 
 def _run_methods(
@@ -136,6 +151,9 @@ def _run_methods(
                 METHODS[method.method](f, first, method.budget, seed, method.population)
             except BudgetSpent:
                 pass
+            if progress:  # a method that converged leaves the rest of its budget unspent
+                asked = min(ev.asked.get(label, 0), method.budget)
+                progress("run end", {"run": label, "unspent": method.budget - asked})
         done += [(run_label(method.method, seed), method.budget) for seed in method.seeds]
 
 
@@ -145,12 +163,13 @@ def _verdicts(ev: Evaluator, config: OptimizeConfig, designs: dict[str, str], of
     seed = config.final_seed + offset
     for label, key in designs.items():
         stored = store.stored_verdict(ev.db, label)
-        if stored is not None and (stored["key"], stored["seed"]) == (key, seed):
-            continue
-        done = ev.run_trials({key: store.design_of_key(key)}, seed, config.final_trials)[key]
-        if done.reason is not None or len(done.trials) != config.final_trials:
-            raise RuntimeError(f"the verdict of the {label} design failed: {done.reason}")
-        store.record_verdict(ev.db, label, key, seed, done.trials)
+        if stored is None or (stored["key"], stored["seed"]) != (key, seed):
+            done = ev.run_trials({key: store.design_of_key(key)}, seed, config.final_trials)[key]
+            if done.reason is not None or len(done.trials) != config.final_trials:
+                raise RuntimeError(f"the verdict of the {label} design failed: {done.reason}")
+            store.record_verdict(ev.db, label, key, seed, done.trials)
+        if ev.progress:
+            ev.progress("verdict", {"label": label})
 
 
 def _validate(ev: Evaluator, config: OptimizeConfig, runs: list[tuple[str, int]]) -> str:
@@ -159,6 +178,8 @@ def _validate(ev: Evaluator, config: OptimizeConfig, runs: list[tuple[str, int]]
     (seed ``final.seed``) has the highest lower bound of P(both), then the lowest mean G. Its
     reported verdict is on other fresh draws again (:func:`_verdicts` with offset 1)."""
     keys = ranked_keys(ev.db, runs, config.final_candidates)
+    if ev.progress:  # the candidates', then the optimum's and table3's (_verdicts offset 1)
+        ev.progress("verdicts", {"verdicts": len(keys) + 2, "trials": config.final_trials})
     _verdicts(ev, config, {candidate_label(i): k for i, k in enumerate(keys)}, 0)
     scored = []
     for i in range(len(keys)):

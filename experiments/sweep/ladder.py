@@ -77,10 +77,16 @@ def run_sweep(
 ) -> Path:
     """Run (or resume) the sweep of ``config`` in ``out_dir``; returns the results database.
 
-    ``progress(event, info)`` is called in this process: ``("start", {"levels", "done"})``
-    once, then ``("result", {"rung", "level", "status"})`` per evaluation and
-    ``("quarantine", {...})`` per job given up. ``evaluate`` runs in the workers (a function
-    of a module they can import; tests replace it to make workers crash).
+    ``progress(event, info)`` is called in this process: ``("start", {"levels", "done",
+    "designs", "finished"})`` once, then ``("result", {"rung", "level", "status",
+    "finished"})`` per evaluation and ``("quarantine", {"rung", "level", "finished"})`` per
+    job given up. ``designs`` is the number of designs and ``finished`` (at the start) how
+    many of them had stopped climbing before this run; an event's ``finished`` says that its
+    design has stopped climbing now (no rung left, or not feasible and not in the holdout,
+    or quarantined), so every design finishes exactly once and ``designs`` is a total known
+    from the start, though the number of evaluations is not (the ladder is adaptive).
+    ``evaluate`` runs in the workers (a function of a module they can import; tests replace
+    it to make workers crash). A sweep with nothing left to run starts no worker.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -95,8 +101,17 @@ def run_sweep(
         done = results_db.finished(db)
         jobs = pending_jobs(config, designs, holdout, done)
         if progress is not None:
-            progress("start", {"levels": [r.level for r in config.ladder], "done": done})
-        _climb(config, db, jobs, designs, holdout, executor, scheduler, progress, evaluate)
+            progress(
+                "start",
+                {
+                    "levels": [r.level for r in config.ladder],
+                    "done": done,
+                    "designs": len(designs),
+                    "finished": len(designs) - len(jobs),
+                },
+            )
+        if jobs:
+            _climb(config, db, jobs, designs, holdout, executor, scheduler, progress, evaluate)
     finally:
         db.close()
     return path
@@ -118,18 +133,29 @@ def _climb(
     def on_done(job: SweepJob, result: dict[str, Any], attempts: int) -> list[SweepJob]:
         rung = int(job["rung"])
         results_db.record(db, result, rung, attempts)
-        if progress is not None:
-            progress("result", {"rung": rung, "level": job["level"], "status": result["status"]})
         design_id = int(job["design_id"])
         climbs = result["status"] == "feasible" or design_id in holdout
+        following = []
         if climbs and rung < top:
-            return [sweep_job(config, design_id, designs[design_id], rung + 1)]
-        return []
+            following = [sweep_job(config, design_id, designs[design_id], rung + 1)]
+        if progress is not None:
+            progress(
+                "result",
+                {
+                    "rung": rung,
+                    "level": job["level"],
+                    "status": result["status"],
+                    "finished": not following,
+                },
+            )
+        return following
 
     def on_quarantine(job: SweepJob, attempts: int, reason: str) -> None:
         results_db.quarantine(db, int(job["design_id"]), str(job["level"]), attempts, reason)
         if progress is not None:
-            progress("quarantine", {"rung": int(job["rung"]), "level": job["level"]})
+            progress(
+                "quarantine", {"rung": int(job["rung"]), "level": job["level"], "finished": True}
+            )
 
     if executor == "local":
         run_local(evaluate, jobs, on_done, on_quarantine, config.workers, config.max_attempts)
