@@ -38,9 +38,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from experiments.config_files import resolve_config
 from experiments.drop.perturbations import Perturbations
 from experiments.names import OPTIMIZER_NAMES, PRESET_NAMES
-from experiments.sweep.config import resolve_config
 from feeders.fields import (
     FieldError,
     field_errors_as,

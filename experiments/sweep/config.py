@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from experiments.config_files import resolve_config
 from experiments.names import LEVEL_NAMES, PASSIVE, PLANNER_NAMES, RUNG_NAMES
 from feeders.fields import (
     FieldError,
@@ -49,7 +50,6 @@ from feeders.fields import (
 )
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
-CONFIG_DIR = Path(__file__).resolve().parents[1] / "configs"  # experiments/configs/*.yaml
 MAX_DESIGNS = 1_000_000
 
 
@@ -266,21 +266,3 @@ def load_config(path: str | Path) -> SweepConfig:
         return config_from_dict(data, name=path.stem)
     except ConfigError as exc:
         raise ConfigError(f"{shown(path)}: {exc}") from None
-
-
-def resolve_config(path: str | Path) -> Path:
-    """``path``, or the shipped config of that name (``experiments/configs/NAME.yaml``) when
-    ``path`` is a bare name with no suffix and no such file here."""
-    path = Path(path)
-    shipped = CONFIG_DIR / f"{path.name}.yaml"
-    if len(path.parts) == 1 and path.suffix == "" and not _exists(path) and _exists(shipped):
-        return shipped
-    return path
-
-
-def _exists(path: Path) -> bool:
-    """Whether ``path`` exists (a name too long for the file system does not)."""
-    try:
-        return path.exists()
-    except OSError:
-        return False
