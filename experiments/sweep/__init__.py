@@ -5,5 +5,6 @@ plain data to plain data (what workers run); ``ladder`` climbs: survivors go up,
 climbs every rung, results are stored as they come and a sweep resumes; ``executors`` run jobs
 in local processes or on Dask; ``results_db`` is the SQLite store; ``summary`` computes the
 statistics (survivors, pruning precision and recall, speed-up); ``report`` writes the HTML page
-with ``report_figures`` and ``report_html``.
+with ``report_figures``, ``report_html`` and ``report_verdicts``, on the shared pieces of
+:mod:`experiments.report_kit`.
 """
