@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from experiments.report_kit.comparison_section import OVERLAY_PREFIX, comparison_figures
 from experiments.report_kit.verdict_section import STRIP_PREFIX
 from experiments.sweep.report_figures import (
     best_figure,
@@ -31,7 +32,7 @@ from experiments.sweep.report_figures import (
     survivors_figure,
 )
 from experiments.sweep.report_html import html_page
-from experiments.sweep.report_verdicts import TRANSITIONS, verdict_figures
+from experiments.sweep.report_verdicts import TRANSITIONS, comparison_of, verdict_figures
 from experiments.sweep.results_db import connect
 from feeders.design import PARAMETER_NAMES
 
@@ -45,11 +46,13 @@ def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Pat
     ``holdout``, ``ladder``, ``feeder``, ``levels``, ``planners``, ``pruning``, ``speedup``,
     ``best``, ``quarantined``, and with a passive rung ``truth``, ``passive``, ``pipelines``);
     the best designs with a verdict get the strips of their nominal drops
-    (:mod:`experiments.sweep.report_verdicts`); the database at ``db_path`` gives the
-    per-design verdicts and the per-run planner numbers the figures need. Figures of an
-    earlier report that this one does not draw (no best designs yet) are removed, so the page
-    and the directory agree. The
-    HTML is written to a temporary file and renamed, so a browser refreshing the page while a
+    (:mod:`experiments.sweep.report_verdicts`) and, the top ``COMPARED`` of them, the "Why
+    this design" section: judged again beside table3 on the same fresh draws, drawn over it
+    (:func:`experiments.sweep.report_verdicts.comparison_of`, 80 drops per design and 80
+    for table3); the database at ``db_path`` gives the per-design verdicts and the per-run
+    planner numbers the figures need. Figures of an earlier report that this one does not
+    draw (no best designs yet) are removed, so the page and the directory agree. The HTML is
+    written to a temporary file and renamed, so a browser refreshing the page while a
     sweep reports never sees half of it.
     """
     out_dir = Path(out_dir)
@@ -69,19 +72,36 @@ def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Pat
     if best:
         figures["best_designs"] = best_figure(summary, best, figures_dir / "best_designs.png")
     figures.update(verdict_figures(summary, figures_dir))
+    comparison: dict[str, Any] | None = None
+    if summary.get("passive"):
+        comparison = comparison_of(summary, Path(db_path))
+        if "absent" not in comparison:
+            figures.update(comparison_figures(comparison, figures_dir, **_environment(summary)))
     for name in FIGURES:
         stale = figures_dir / f"{name}.png"
         if name not in figures and stale.exists():
             stale.unlink()
-    for stale in [*figures_dir.glob(f"{STRIP_PREFIX}*.png"), figures_dir / f"{TRANSITIONS}.png"]:
+    for stale in [
+        *figures_dir.glob(f"{STRIP_PREFIX}*.png"),
+        *figures_dir.glob(f"{OVERLAY_PREFIX}*.png"),
+        figures_dir / f"{TRANSITIONS}.png",
+    ]:
         if stale.stem not in figures and stale.exists():
             stale.unlink()
 
     page = out_dir / "report.html"
     partial = out_dir / "report.html.partial"
-    partial.write_text(html_page(summary, ladder, figures, Path(db_path)), encoding="utf-8")
+    shown = summary if comparison is None else {**summary, "comparison": comparison}
+    partial.write_text(html_page(shown, ladder, figures, Path(db_path)), encoding="utf-8")
     os.replace(partial, page)
     return page
+
+
+def _environment(summary: dict) -> dict[str, Any]:
+    """The sweep's part, friction and feeder options, for drawing its designs."""
+    from feeders.scene_yaml import environment_from_dict
+
+    return dict(environment_from_dict(summary.get("feeder") or {}, prefix="feeder."))
 
 
 def _read_db(db_path: str | Path) -> dict[str, Any]:

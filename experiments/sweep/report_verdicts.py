@@ -11,7 +11,10 @@ cannot be built, or a summary without a passive rung, gets a sentence, never an 
 from __future__ import annotations
 
 import html
+import json
+from contextlib import closing
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -21,6 +24,7 @@ from matplotlib.figure import Figure
 
 from experiments.pictures.scenes import save_figure
 from experiments.report_kit.cells import DASH, cell, interval
+from experiments.report_kit.comparison_section import comparison_html
 from experiments.report_kit.page import figure_html, html_table
 from experiments.report_kit.verdict_section import (
     OTHER_COLOUR,
@@ -32,6 +36,8 @@ from experiments.sweep.report_figures import MAX_BEST_DRAWN
 from feeders.feeder import ORIENTATIONS
 
 TRANSITIONS = "transitions"
+COMPARED = 3  # the best designs judged again against the baseline on fresh draws
+BASELINE = "table3"
 
 
 def with_verdicts(summary: dict) -> list[dict]:
@@ -223,6 +229,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
     parts.append("<h3>The designs that work</h3>")
     if not best:
         parts.append("<p>No design works (yet).</p>")
+        parts += _comparison_parts(summary, figures)
         return parts
     parts.append(
         '<p class="note">Ranked by the lower bound of P(both), the probability that one part '
@@ -236,4 +243,72 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
     parts.append(figure_html(figures, TRANSITIONS, "transition matrices of the designs that work"))
     for entry in best:
         parts += design_verdict_html(entry, figures)
+    parts += _comparison_parts(summary, figures)
     return parts
+
+
+def _comparison_parts(summary: dict, figures: dict[str, Path]) -> list[str]:
+    """The "Why this design" section from the summary's ``comparison`` (set by the report,
+    :func:`comparison_of`), or the sentence that says why there is none."""
+    comparison = summary.get("comparison")
+    if not comparison:
+        return []
+    if "absent" in comparison:
+        return [
+            "<h2>Why this design</h2>",
+            f"<p>No comparison with {html.escape(BASELINE)} on fresh draws: "
+            f"{html.escape(str(comparison['absent']))}.</p>",
+        ]
+    return comparison_html(comparison, figures)
+
+
+def comparison_of(summary: dict, db_path: Path, drops: int | None = None) -> dict[str, Any]:
+    """The best designs that work (at most ``COMPARED``) judged again beside the baseline
+    (the paper's table3) on the same fresh draws
+    (:func:`experiments.drop.compare.compare_designs`, ``drops`` trials each, default
+    ``FRESH_DROPS``) with the sweep's passive settings, part and feeder, on a seed that is no
+    design's verdict seed; ``{"absent": reason}`` when there is nothing to compare."""
+    from experiments.drop.compare import FRESH_DROPS, compare_designs, fresh_seed
+    from experiments.drop.perturbations import Perturbations
+    from experiments.drop.verdict_settings import VerdictSettings
+    from experiments.names import PASSIVE
+    from experiments.sweep.job import verdict_seed
+    from experiments.sweep.results_db import connect
+    from feeders.design import DesignParameters, preset
+    from feeders.scene_yaml import environment_from_dict
+
+    best = with_verdicts(summary)[:COMPARED]
+    if not best:
+        return {"absent": "no design works, so none is recommended"}
+    with closing(connect(db_path, readonly=True)) as db:
+        row = db.execute("SELECT value FROM meta WHERE key = 'config'").fetchone()
+    config = json.loads(row["value"]) if row is not None else {}
+    rungs = [r for r in config.get("ladder") or [] if r.get("level") == PASSIVE]
+    if not rungs:
+        return {"absent": "the results database holds no sweep config with a passive rung"}
+    settings = VerdictSettings(
+        **(rungs[0].get("verdict") or {}),
+        perturbations=Perturbations(**(rungs[0].get("perturbations") or {})),
+    )
+    sweep_seed = int((config.get("designs") or {}).get("seed", 0))
+    ranked_with = [verdict_seed(sweep_seed, int(b["design_id"])) for b in best]
+    environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
+    try:
+        designs = {
+            f"design {b['design_id']}": DesignParameters.from_vector(list(b["values"]))
+            for b in best
+        }
+    except ValueError as exc:
+        return {"absent": f"a best design's values are not a design ({exc})"}
+    comparison = compare_designs(
+        designs,
+        (BASELINE, preset(BASELINE)),
+        settings,
+        fresh_seed(sweep_seed, ranked_with),
+        drops or FRESH_DROPS,
+        part=environment.pop("part"),
+        friction=environment.pop("friction"),
+        **environment,
+    )
+    comparison["ranked_with"] = ranked_with
+    return comparison

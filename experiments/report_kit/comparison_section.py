@@ -1,0 +1,230 @@
+"""A report's "Why this design" section: a recommended design beside a baseline on the same
+fresh draws (the data of :func:`experiments.drop.compare.compare_designs`).
+
+Per design: whether the fresh draws confirm it works (said plainly, from the numbers), per
+entry and for both entries the successes, probability with its Wilson 95% interval and mean
+exit time of the design and of the baseline, the paired count of draws only one of them
+passed, both transition matrices, the two feeders drawn over each other, and the 12
+parameters' differences as fractions of Table 2's range.
+"""
+
+from __future__ import annotations
+
+import html
+import re
+from pathlib import Path
+from typing import Any
+
+from experiments.proportions import wilson_interval
+from experiments.report_kit.cells import DASH, cell, interval
+from experiments.report_kit.page import figure_html, html_table
+from experiments.report_kit.verdict_section import outcome_order
+from feeders.design import PARAMETER_MEANINGS
+from feeders.feeder import ORIENTATIONS
+
+OVERLAY_PREFIX = "overlay_"
+
+
+def overlay_name(label: str) -> str:
+    """The figure name of a design's overlay on the baseline (a file-name-safe label)."""
+    return OVERLAY_PREFIX + re.sub(r"[^A-Za-z0-9]+", "_", label).strip("_")
+
+
+def confirmation(entry: dict[str, Any], drops: int, target: float) -> tuple[bool, str]:
+    """Whether the fresh draws confirm that the design works, and the sentence that says so
+    with the numbers: confirmed when every entry's Wilson 95% lower bound is above
+    ``target`` (the rule the ranking's verdict used), refuted when some entry's upper bound
+    is below it, else undecided on ``drops`` draws."""
+    v = entry.get("verdict")
+    if not v:
+        return False, f"not confirmed: the design cannot be built ({entry.get('reason') or DASH})"
+    per = v.get("orientations") or {}
+    bounds = {o: (per.get(o) or {}).get("interval") or [0.0, 0.0] for o in ORIENTATIONS}
+    both = v.get("both") or {}
+    n = int(v.get("drops") or 0)
+    both_text = (
+        f"P(both) {cell(both.get('successes'))}/{n}, 95% lower bound "
+        f"{cell((both.get('interval') or [None])[0], '.3f')}"
+    )
+    lows = ", ".join(f"{o.replace('_', ' ')} {bounds[o][0]:.3f}" for o in ORIENTATIONS)
+    if all(bounds[o][0] > target for o in ORIENTATIONS):
+        return True, (
+            f"confirmed: on {n} fresh draws every entry's 95% lower bound clears the target "
+            f"{target:g} ({lows}); {both_text}."
+        )
+    below = [o for o in ORIENTATIONS if bounds[o][1] < target]
+    if below:
+        highs = ", ".join(f"{o.replace('_', ' ')} {bounds[o][1]:.3f}" for o in below)
+        return False, (
+            f"not confirmed: on {n} fresh draws the design fails, an entry's 95% upper bound "
+            f"is below the target {target:g} ({highs}); {both_text}."
+        )
+    best_low = wilson_interval(drops, drops)[0]
+    return False, (
+        f"not confirmed: undecided on {n} fresh draws, not every entry's 95% lower bound "
+        f"clears the target {target:g} ({lows}; {drops} of {drops} would give "
+        f"{best_low:.3f}); {both_text}."
+    )
+
+
+def comparison_html(comparison: dict[str, Any], figures: dict[str, Path]) -> list[str]:
+    """The section's parts: a heading, what was run and its cost, then per design its
+    confirmation, numbers, transition matrices, overlay and parameter differences."""
+    e = html.escape
+    base = comparison["baseline"]
+    name = str(base["label"])
+    drops = int(comparison["drops"])
+    target = float(comparison["target"])
+    designs = list(comparison.get("designs") or [])
+    parts = [
+        f"<h2>Why this design: the recommendation against {e(name)} on fresh draws</h2>",
+        f"<p>Each recommended design and {e(name)} were judged again on the same {drops} fresh "
+        f"perturbed trials (both entries each, seed {int(comparison['seed'])}, not a seed any "
+        "design was ranked with): trial i of every design sees the same entry noise, friction "
+        "and manufacturing errors, so the differences below are the designs', not the draws'. "
+        f"Cost: {drops * 2 * (len(designs) + 1)} drops in "
+        f"{float(comparison.get('wall_time_s') or 0.0):.1f} s.</p>",
+    ]
+    if not base.get("verdict"):
+        parts.append(f"<p>{e(name)} cannot be built here ({e(str(base.get('reason')))}).</p>")
+    for entry in designs:
+        parts += _design_parts(entry, base, drops, target, figures)
+    return parts
+
+
+def _design_parts(
+    entry: dict[str, Any],
+    base: dict[str, Any],
+    drops: int,
+    target: float,
+    figures: dict[str, Path],
+) -> list[str]:
+    e = html.escape
+    label, name = str(entry["label"]), str(base["label"])
+    confirmed, sentence = confirmation(entry, drops, target)
+    colour = "#2ca02c" if confirmed else "#d62728"
+    parts = [
+        f"<h3>{e(label)} against {e(name)}</h3>",
+        f'<p><b style="color:{colour}">{e(sentence.split(":")[0])}</b>:'
+        f"{e(sentence.split(':', 1)[1])}</p>",
+    ]
+    parts.append(
+        html_table(
+            ["entry", *_numbers_header(label), *_numbers_header(name)],
+            [
+                [row, *_numbers(entry.get("verdict"), key), *_numbers(base.get("verdict"), key)]
+                for row, key in [
+                    *((o.replace("_", " "), o) for o in ORIENTATIONS),
+                    ("both", "both"),
+                ]
+            ],
+            (0,),
+        )
+    )
+    paired = entry.get("paired")
+    if paired:
+        parts.append(
+            f'<p class="note">Paired, on the {paired["draws"]} draws both counted: {e(label)} '
+            f"passed from both entries where {e(name)} did not on {paired['design_only']}, "
+            f"{e(name)} where {e(label)} did not on {paired['baseline_only']}.</p>"
+        )
+    parts.append(_transitions_table(entry, base))
+    parts.append(
+        figure_html(figures, overlay_name(label), f"{label} (filled) drawn over {name} (outline)")
+        or f"<p>No drawing: {e(label)} or {e(name)} cannot be built.</p>"
+    )
+    parts.append(
+        html_table(
+            ["parameter", "meaning", label, name, "difference", "of Table 2's range"],
+            [
+                [
+                    str(d["name"]),
+                    PARAMETER_MEANINGS.get(str(d["name"]), ""),
+                    cell(d["design"], ".4g"),
+                    cell(d["baseline"], ".4g"),
+                    cell(d["difference"], "+.3g"),
+                    f"{cell(100.0 * d['fraction'], '+.0f')}%",
+                ]
+                for d in entry.get("differences") or []
+            ],
+            (0, 1),
+        )
+    )
+    return parts
+
+
+def _numbers_header(label: str) -> list[str]:
+    return [f"{label}: successes", "P", "95% CI", "mean exit time (s)"]
+
+
+def _numbers(verdict: dict[str, Any] | None, key: str) -> list[str]:
+    """successes / drops, P, interval and mean exit time of one entry (or of both)."""
+    if not verdict:
+        return [DASH] * 4
+    per = verdict.get(key) if key == "both" else (verdict.get("orientations") or {}).get(key)
+    per = per or {}
+    return [
+        f"{cell(per.get('successes'))} / {cell(verdict.get('drops'))}",
+        cell(per.get("p"), ".3f"),
+        interval(per.get("interval")),
+        cell(per.get("mean_exit_time_s"), ".3f") if key != "both" else DASH,
+    ]
+
+
+def _transitions_table(entry: dict[str, Any], base: dict[str, Any]) -> str:
+    """Both transition matrices in one table: a row per design and entry, a column per
+    outcome either of them reached."""
+    rows = [
+        (str(x["label"]), (x.get("verdict") or {}).get("transitions") or {}) for x in (entry, base)
+    ]
+    outcomes: list[str] = []
+    for _, matrix in rows:
+        outcomes += [c for c in outcome_order(matrix) if c not in outcomes]
+    if not outcomes:
+        return ""
+    return html_table(
+        ["design", "entry", *outcomes],
+        [
+            [
+                label,
+                o.replace("_", " "),
+                *(cell((matrix.get(o) or {}).get(c, 0)) for c in outcomes),
+            ]
+            for label, matrix in rows
+            for o in ORIENTATIONS
+        ],
+        (0, 1),
+    )
+
+
+def comparison_figures(
+    comparison: dict[str, Any], figures_dir: Path, **feeder_options: Any
+) -> dict[str, Path]:
+    """Per design that can be built (and a baseline that can), its feeder filled over the
+    baseline's outline (:func:`experiments.pictures.overlay.overlay_figure`); name -> PNG.
+    ``feeder_options`` (part, friction, ...) go to :func:`feeders.feeder.build_feeder`."""
+    from experiments.pictures.overlay import overlay_figure
+    from feeders.design import DesignError, DesignParameters
+    from feeders.feeder import DegenerateDesign, build_feeder
+
+    def scene(entry: dict[str, Any]) -> Any:
+        try:
+            design = DesignParameters.from_vector(list(entry["values"]))
+            return build_feeder(design, name=str(entry["label"]), **feeder_options)
+        except (DegenerateDesign, DesignError, ValueError):
+            return None
+
+    base = comparison["baseline"]
+    baseline = scene(base)
+    out: dict[str, Path] = {}
+    if baseline is None:
+        return out
+    for entry in comparison.get("designs") or []:
+        built = scene(entry)
+        if built is None:
+            continue
+        name = overlay_name(str(entry["label"]))
+        out[name] = overlay_figure(
+            built, baseline, (str(entry["label"]), str(base["label"])), figures_dir / f"{name}.png"
+        )
+    return out
