@@ -80,13 +80,21 @@ def finish(
     issue, all of it figures and nominal drops drawn again)."""
     from experiments.progress import phase, say
     from experiments.sweep import results_db
+    from experiments.sweep.report_cache import (
+        OMPL_DATABASE,
+        load_cache,
+        report_intact,
+        report_key,
+        report_state,
+        save_cache,
+    )
     from experiments.sweep.summary import summary_table
 
     quiet = bool(getattr(args, "quiet", False))
     results = out / "results.sqlite"
     results_db.check_database(results)  # refused as the summary would refuse it
     key = report_key(results)  # before the summary: a key never newer than what it keys
-    cache = _load_cache(out, key)
+    cache = load_cache(out, key)
     if cache is None:
         from experiments.sweep.summary import summarise
 
@@ -101,17 +109,17 @@ def finish(
         files["ompl_database"] = str(out / OMPL_DATABASE)
     if not getattr(args, "no_report", False):
         page = out / "report.html"
-        if _report_intact(out, cache["report"]):
+        if report_intact(out, cache["report"]):
             say(f"{page} is up to date (the results have not changed)", quiet)
         else:
             from experiments.sweep.report import write_report
 
             with phase("writing the report", quiet):
                 page = write_report(out, summary, results)
-            cache["report"] = _report_state(out)
+            cache["report"] = report_state(out)
         files["report"] = str(page)
     if key is not None:
-        _save_cache(out, cache)
+        save_cache(out, cache)
     summary["files"] = files
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     if args.json:
@@ -123,85 +131,3 @@ def finish(
         for name, path in files.items():
             print(f"{name}: {path}")
     return 0
-
-
-# packages whose code decides what a report shows: a change in any redraws it
-REPORT_CODE = ("experiments", "feeders", "validity", "planners")
-
-
-def report_key(results: Path) -> str | None:
-    """SHA-256 of the rows of the results database at ``results`` (every table by name, its
-    rows in rowid order, as SQLite's dump gives them: a run that finds nothing to do leaves
-    them as they were, though it rewrites the file's header), of the source of
-    :data:`REPORT_CODE` and of the matplotlib and numpy versions; None when the database
-    cannot be read (then nothing is cached, and the summary says what is wrong)."""
-    import hashlib
-    import sqlite3
-    from importlib import metadata, util
-
-    from experiments.database_file import open_read_only
-
-    digest = hashlib.sha256(CACHE_FORMAT.encode())
-    try:
-        db = open_read_only(results)
-        try:
-            for line in db.iterdump():
-                digest.update(line.encode("utf-8", "surrogateescape"))
-                digest.update(b"\n")
-        finally:
-            db.close()
-    except (sqlite3.Error, OSError, UnicodeError):
-        return None
-    for package in REPORT_CODE:
-        spec = util.find_spec(package)
-        for root in (spec.submodule_search_locations or []) if spec else []:
-            for source in sorted(Path(root).rglob("*.py")):
-                digest.update(str(source.relative_to(root)).encode())
-                digest.update(source.read_bytes())
-    for dist in ("matplotlib", "numpy"):
-        digest.update(f"{dist} {metadata.version(dist)}".encode())
-    return digest.hexdigest()
-
-
-CACHE = "report-cache.json"
-OMPL_DATABASE = Path("ompl") / "benchmark.db"
-CACHE_FORMAT = "partfeeder report cache 1"
-
-
-def _load_cache(out: Path, key: str | None) -> dict[str, Any] | None:
-    """The cache of ``out`` when it was written under ``key``, else None."""
-    if key is None:
-        return None
-    try:
-        cache = json.loads((out / CACHE).read_text())
-    except (OSError, ValueError):
-        return None
-    if not isinstance(cache, dict) or cache.get("key") != key:
-        return None
-    if not isinstance(cache.get("summary"), dict):
-        return None
-    return cache
-
-
-def _save_cache(out: Path, cache: dict[str, Any]) -> None:
-    """Written beside and renamed: a reader never sees half of it."""
-    partial = out / f"{CACHE}.partial"
-    partial.write_text(json.dumps(cache, indent=1))
-    os.replace(partial, out / CACHE)
-
-
-def _report_state(out: Path) -> dict[str, Any]:
-    """``report.html`` and each picture in ``figures/`` by size and modification time (ns),
-    as just written."""
-    paths = [out / "report.html", *sorted((out / "figures").glob("*"))]
-    return {
-        str(p.relative_to(out)): [p.stat().st_size, p.stat().st_mtime_ns]
-        for p in paths
-        if p.is_file()
-    }
-
-
-def _report_intact(out: Path, state: Any) -> bool:
-    """The report's files are those written under the cached key: none removed, replaced,
-    edited or added."""
-    return isinstance(state, dict) and bool(state) and _report_state(out) == state

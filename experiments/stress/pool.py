@@ -84,7 +84,7 @@ def progress_bar(total: int) -> tuple[Callable[[int], None] | None, Callable[[],
     """``(update, close)`` of a tqdm bar on stderr when it is a terminal, else no bar."""
     if not sys.stderr.isatty():
         return None, lambda: None
-    from tqdm import tqdm
+    from experiments.progress import bar
 
-    bar = tqdm(total=total, desc="stress", unit="case", file=sys.stderr)
-    return bar.update, bar.close
+    cases = bar(total, "stress", "case")
+    return cases.update, cases.close

@@ -14,7 +14,7 @@ from cli_process import noise, run_cli
 from sweep_fixtures import TINY, fake_result
 
 from experiments.cli import report as report_cli
-from experiments.sweep import results_db
+from experiments.sweep import report_cache, results_db
 from experiments.sweep.config import config_from_dict
 from feeders.halton import halton_points
 
@@ -110,7 +110,7 @@ def test_a_report_changed_on_disk_is_written_again(tmp_path, drawn, capsys, dama
 def test_a_cache_of_another_sweep_or_unreadable_is_not_used(tmp_path, drawn, capsys):
     sweep = finished_sweep(tmp_path / "sweep")
     _report(sweep, capsys)
-    cache = sweep / report_cli.CACHE
+    cache = sweep / report_cache.CACHE
     stored = json.loads(cache.read_text())
     cache.write_text(json.dumps({**stored, "key": "0" * 64}))
     _report(sweep, capsys)
@@ -122,20 +122,20 @@ def test_a_cache_of_another_sweep_or_unreadable_is_not_used(tmp_path, drawn, cap
 def test_the_key_follows_the_rows_not_the_files_bytes(tmp_path):
     sweep = finished_sweep(tmp_path / "sweep")
     results = sweep / "results.sqlite"
-    key = report_cli.report_key(results)
+    key = report_cache.report_key(results)
     db = results_db.connect(results)  # a run that finds nothing to do: claims, adds nothing
     try:
         config = config_from_dict(CONFIG)
         results_db.claim(db, config.to_dict(), config.results_key())
     finally:
         db.close()
-    assert report_cli.report_key(results) == key
+    assert report_cache.report_key(results) == key
     db = results_db.connect(results)
     try:
         results_db.record(db, fake_result(2, "geometric", "infeasible", 0.3), 0, 1)
     finally:
         db.close()
-    assert report_cli.report_key(results) not in (key, None)
+    assert report_cache.report_key(results) not in (key, None)
 
 
 def test_report_twice_on_the_command_line_draws_once_and_prints_json(tmp_path):
