@@ -77,7 +77,7 @@ def comparison_html(comparison: dict[str, Any], figures: dict[str, Path]) -> lis
     target = float(comparison["target"])
     designs = list(comparison.get("designs") or [])
     parts = [
-        f"<h2>Why this design: the recommendation against {e(name)} on fresh draws</h2>",
+        f'<h2 id="why">Why this design: the recommendation against {e(name)} on fresh draws</h2>',
         f"<p>Each recommended design and {e(name)} were judged again on the same {drops} fresh "
         f"perturbed trials (both entries each, seed {int(comparison['seed'])}, not a seed any "
         "design was ranked with): trial i of every design sees the same entry noise, friction "
@@ -228,3 +228,43 @@ def comparison_figures(
             built, baseline, (str(entry["label"]), str(base["label"])), figures_dir / f"{name}.png"
         )
     return out
+
+
+def slower_exit_time(entry: dict[str, Any]) -> float | None:
+    """The larger of the entries' mean exit times (s) on the fresh draws: what a feeder's
+    rate is limited by; None when unknown."""
+    per = ((entry.get("verdict") or {}).get("orientations")) or {}
+    times = [(per.get(o) or {}).get("mean_exit_time_s") for o in ORIENTATIONS]
+    known = [float(t) for t in times if t is not None]
+    return max(known) if len(known) == len(ORIENTATIONS) else None
+
+
+def fresh_ranking(comparison: dict[str, Any]) -> list[dict[str, Any]]:
+    """The compared designs ranked on the fresh draws, not on the draws they were selected
+    on: confirmed ones first, then by the Wilson 95% lower bound of P(both), then by the
+    slower entry's mean exit time (faster first). Each entry: ``label``, ``confirmed``,
+    ``sentence`` (:func:`confirmation`), ``lower`` (P(both)'s lower bound) and
+    ``exit_time_s``."""
+    drops, target = int(comparison["drops"]), float(comparison["target"])
+    ranked = []
+    for entry in comparison.get("designs") or []:
+        confirmed, sentence = confirmation(entry, drops, target)
+        both = (entry.get("verdict") or {}).get("both") or {}
+        lower = (both.get("interval") or [0.0])[0]
+        ranked.append(
+            {
+                "label": str(entry["label"]),
+                "confirmed": confirmed,
+                "sentence": sentence,
+                "lower": float(lower or 0.0),
+                "exit_time_s": slower_exit_time(entry),
+            }
+        )
+    ranked.sort(
+        key=lambda r: (
+            not r["confirmed"],
+            -r["lower"],
+            float("inf") if r["exit_time_s"] is None else r["exit_time_s"],
+        )
+    )
+    return ranked

@@ -19,6 +19,10 @@ th { background: #f0f0f0; }
 td.text { text-align: left; }
 img { max-width: 100%; border: 1px solid #eee; margin: 0.5em 0; }
 p.note { color: #666; }
+div.recommendation { border: 2px solid #2ca02c; background: #f4fbf4; padding: 0.3em 1em;
+  margin: 1em 0 1.5em 0; max-width: 1000px; }
+div.recommendation.none { border-color: #d62728; background: #fdf4f4; }
+div.recommendation li { margin: 0.3em 0; }
 """
 
 

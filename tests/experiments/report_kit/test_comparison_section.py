@@ -7,6 +7,7 @@ from experiments.proportions import wilson_interval
 from experiments.report_kit.comparison_section import (
     comparison_html,
     confirmation,
+    fresh_ranking,
     overlay_name,
 )
 
@@ -93,3 +94,19 @@ def test_the_section_shows_both_designs_numbers_and_the_differences() -> None:
 
 def test_overlay_names_are_file_safe() -> None:
     assert overlay_name("design 31") == "overlay_design_31"
+
+
+def test_fresh_ranking_puts_confirmed_designs_first_then_the_faster_on_a_tie() -> None:
+    slow = entry(40, 40)
+    slow["label"] = "slow"
+    fast = entry(40, 40)
+    fast["label"] = "fast"
+    fast["verdict"]["orientations"]["heavy_trailing"]["mean_exit_time_s"] = 2.0
+    slow["verdict"]["orientations"]["heavy_trailing"]["mean_exit_time_s"] = 3.0
+    lucky = entry(40, 30)  # ranked first on its own draws, refuted on the fresh ones
+    lucky["label"] = "lucky"
+    comparison = {"drops": 40, "target": 0.9, "designs": [lucky, slow, fast]}
+    ranked = fresh_ranking(comparison)
+    assert [r["label"] for r in ranked] == ["fast", "slow", "lucky"]
+    assert [r["confirmed"] for r in ranked] == [True, True, False]
+    assert ranked[0]["exit_time_s"] == 2.25  # the slower entry's time limits the rate

@@ -1,0 +1,167 @@
+"""A report's "How much tolerance it has" section: the margins of one design
+(:meth:`experiments.margins.run.MarginsReport.to_dict`) as the chart a designer reads at a
+glance, a table of the room on each side of every nominal, and the tightest axes named.
+
+Room is measured in fractions of the axis's box (Table 2's range for the 12 design
+parameters, a stated range for friction and the part), so a 0.01 length unit on ``r``
+(box 0.2 wide) and on ``d`` (box 2.5 wide) read as what they are: 5% and 0.4% of the range
+a designer may choose from. An end of a margin that reached the box's edge is a lower bound
+on the room ("at least"): the search stops at the box.
+"""
+
+from __future__ import annotations
+
+import html
+from pathlib import Path
+from typing import Any
+
+from experiments.report_kit.cells import DASH, cell
+from experiments.report_kit.page import figure_html, html_table
+
+MARGINS = "margins"
+TIGHTEST = 3  # axes named in the one-line summary
+
+
+def margins_figures(margins: dict[str, Any] | None, figures_dir: Path) -> dict[str, Path]:
+    """The margins chart (:func:`experiments.margins.figure.margins_chart`) of a design that
+    has margins, as ``{MARGINS: path}``; nothing for a design without them."""
+    if not margins or not margins.get("margins"):
+        return {}
+    from experiments.margins.figure import margins_chart
+
+    return {MARGINS: margins_chart(margins, figures_dir / f"{MARGINS}.png")}
+
+
+def room(row: dict[str, Any]) -> tuple[float, float] | None:
+    """The room below and above the nominal of one margins row, as fractions of its box's
+    width (``(0.0, 0.0)`` is no room at all); None when the row has no margin."""
+    interval = row.get("interval")
+    if interval is None:
+        return None
+    low, high = row["box"]
+    width = float(high - low) or 1.0
+    nominal = float(row["nominal"])
+    return (nominal - float(interval[0])) / width, (float(interval[1]) - nominal) / width
+
+
+def at_edge(row: dict[str, Any], side: str) -> bool:
+    """Whether the margin's ``side`` ("low" or "high") end is the box's edge (its room is a
+    lower bound: the search stopped there)."""
+    end = row.get(side) or {}
+    return bool(end.get("at_box_edge"))
+
+
+def tightest(margins: dict[str, Any], count: int = TIGHTEST) -> list[dict[str, Any]]:
+    """The ``count`` axes with the least room on their tighter side, tightest first; an axis
+    without a margin comes before every axis with one. Each entry: ``parameter``,
+    ``meaning``, ``below`` and ``above`` (fractions of the box, None without a margin)."""
+    rows = []
+    for row in margins.get("margins") or []:
+        r = room(row)
+        key = -1.0 if r is None else min(r)
+        rows.append(
+            (
+                key,
+                {
+                    "parameter": row["parameter"],
+                    "meaning": row.get("meaning", ""),
+                    "below": None if r is None else r[0],
+                    "above": None if r is None else r[1],
+                },
+            )
+        )
+    rows.sort(key=lambda item: item[0])
+    return [entry for _, entry in rows[:count]]
+
+
+def _percent(fraction: float | None, edge: bool) -> str:
+    if fraction is None:
+        return DASH
+    return f"{'≥ ' if edge else ''}{100.0 * fraction:.1f}%"
+
+
+def margins_sentence(margins: dict[str, Any]) -> str:
+    """One sentence: the tightest axes with their room either side (or that the design has
+    no margins, and why)."""
+    if not margins.get("works"):
+        return (
+            f"{margins.get('design', 'the design')} does not work at nominal on the margins' "
+            "draws, so it has no margins"
+        )
+    parts = []
+    for t in tightest(margins):
+        if t["below"] is None:
+            parts.append(f"{t['parameter']} none (below the target at nominal)")
+        else:
+            parts.append(
+                f"{t['parameter']} -{100.0 * t['below']:.1f}% / +{100.0 * t['above']:.1f}%"
+            )
+    return (
+        "the tightest, as room below / above the nominal in fractions of the axis's box: "
+        + ", ".join(parts)
+    )
+
+
+def margins_html(
+    margins: dict[str, Any] | None, figures: dict[str, Path], absent: str | None = None
+) -> list[str]:
+    """The section's parts: heading, what was measured and its cost, the tightest axes, the
+    chart and the table of every axis; ``absent`` (why there are no margins) when
+    ``margins`` is None."""
+    e = html.escape
+    if margins is None:
+        return [
+            "<h2>How much tolerance it has: margins</h2>",
+            f"<p>No margins: {e(absent or 'nothing to measure')}.</p>",
+        ]
+    name = str(margins.get("design", "the design"))
+    cost = margins.get("cost") or {}
+    parts = [
+        f'<h2 id="margins">How much tolerance it has: the margins of {e(name)}</h2>',
+        f"<p>Per axis, with the others at nominal: {e(str(margins.get('meaning', '')))}. "
+        f"Target {cell(margins.get('target'))}, {cell(margins.get('drops_per_value'))} "
+        f"trials per value (seed {cell(margins.get('seed'))}). Cost: "
+        f"{cell(cost.get('drops'))} drops, {cell(cost.get('wall_time_s'), '.1f')} s on "
+        f"{cell(cost.get('workers'))} worker(s).</p>",
+    ]
+    if not margins.get("works"):
+        parts.append(f"<p>{e(margins_sentence(margins))}.</p>")
+        return parts
+    sentence = margins_sentence(margins)
+    parts.append(f"<p><b>{e(sentence[0].upper() + sentence[1:])}.</b></p>")
+    parts.append(figure_html(figures, MARGINS, f"tolerance margins of {name}"))
+    rows = []
+    for row in margins.get("margins") or []:
+        r = room(row)
+        interval = row.get("interval")
+        rows.append(
+            [
+                str(row["parameter"]),
+                str(row.get("meaning", "")),
+                cell(row.get("nominal"), ".4g"),
+                DASH if interval is None else f"[{interval[0]:.4g}, {interval[1]:.4g}]",
+                f"[{row['box'][0]:.4g}, {row['box'][1]:.4g}] ({row.get('box_source', '')})",
+                _percent(None if r is None else r[0], at_edge(row, "low")),
+                _percent(None if r is None else r[1], at_edge(row, "high")),
+            ]
+        )
+    parts.append(
+        html_table(
+            [
+                "axis",
+                "meaning",
+                "nominal",
+                "allowed interval",
+                "box",
+                "room below (of box)",
+                "room above (of box)",
+            ],
+            rows,
+            (0, 1, 4),
+        )
+    )
+    parts.append(
+        '<p class="note">"≥": the end reached the box\'s edge, so the room may be larger; '
+        "the search stops at the box.</p>"
+    )
+    return parts
