@@ -67,3 +67,35 @@ def _terminal(stream: TextIO | None) -> TextIO | None:
         return stream
     isatty = getattr(sys.stderr, "isatty", None)
     return sys.stderr if isatty is not None and isatty() else None
+
+
+class PhaseBars:
+    """One bar per phase of a job whose later phases are sized by the earlier ones' results
+    (the part calibration: the geometric verdicts go to the shapes the passive columns
+    chose): each phase's bar starts when its jobs are queued, with their number as its fixed
+    total, so its percentage and time estimate mean something (a single bar whose total grew
+    as jobs were queued read 100% whenever it caught up). ``note(label, queued)`` is the
+    job's progress callback: ``queued`` > 0 opens the phase ``label`` with that total (a
+    phase queued again in two parts gets a bar for each), 0 counts one job done."""
+
+    def __init__(self, desc: str, unit: str = "job", stream: TextIO | None = None) -> None:
+        self.desc, self.unit, self.stream = desc, unit, stream
+        self.current: Any = None
+
+    def note(self, label: str, queued: int) -> None:
+        if queued > 0:
+            self.close()
+            self.current = bar(queued, f"{self.desc}: {label}", self.unit, stream=self.stream)
+        elif self.current is not None:
+            self.current.update()
+
+    def close(self) -> None:
+        if self.current is not None:
+            self.current.close()
+            self.current = None
+
+    def __enter__(self) -> PhaseBars:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

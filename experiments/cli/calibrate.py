@@ -45,14 +45,13 @@ def run(args: argparse.Namespace) -> int:
     check_time(args.time)
     out = out_dir(args.out)
     compile_once(["geometric"])
-    from tqdm import tqdm
-
     from experiments.pictures.atlas import corner_census, draw_atlas
+    from experiments.progress import bar as progress_bar
     from experiments.verdicts.calibration import calibrate, markdown_table
     from feeders.design import PRESETS
     from feeders.feeder import ORIENTATIONS
 
-    with tqdm(total=len(PRESETS) * len(ORIENTATIONS), desc="calibrating", unit="run") as bar:
+    with progress_bar(len(PRESETS) * len(ORIENTATIONS), "calibrating", "run") as bar:
         rows = calibrate(
             runs=args.runs,
             time_limit=args.time,
@@ -80,24 +79,14 @@ def _run_part(args: argparse.Namespace) -> int:
     out = out_dir(args.out)
     assert out is not None
     compile_once(["geometric", "dynamic"])  # the paper's verdicts, then the passive drops
-    from tqdm import tqdm
-
+    from experiments.progress import PhaseBars
     from experiments.verdicts import part_calibration as pc
 
     grid, budget = (
         (pc.QUICK_GRID, pc.QUICK_BUDGET) if args.quick else (pc.FULL_GRID, pc.FULL_BUDGET)
     )
-    with tqdm(total=0, desc="part calibration", unit="job") as bar:
-
-        def progress(label: str, queued: int) -> None:
-            if queued:
-                bar.total += queued
-                bar.refresh()
-            else:
-                bar.set_postfix_str(label)
-                bar.update()
-
-        landscape = pc.run_landscape(grid, budget, workers=args.workers, progress=progress)
+    with PhaseBars("part calibration", unit="job") as bars:
+        landscape = pc.run_landscape(grid, budget, workers=args.workers, progress=bars.note)
     table = pc.markdown(landscape)
     md, data, png = (out / name for name in PART_FILES)
     md.write_text(table + "\n")
