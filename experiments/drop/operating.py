@@ -16,15 +16,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.signal import convolve2d
 from scipy.stats import binom
 
+from experiments.drop.sequential import FAILS, WORKS, Wald
 from experiments.drop.verdict import VerdictSettings, decide, looks
+from experiments.drop.verdict_settings import SPRT
+from experiments.proportions import wilson_interval
 
 
 @dataclass(frozen=True)
 class OperatingPoint:
-    """At true success probability ``p``: P(works), P(fails), P(undecided) and the expected
-    number of trials of one verdict."""
+    """At true success probability ``p`` (of each entry, for a design): P(works),
+    P(fails), P(undecided) and the expected number of trials of one verdict."""
 
     p: float
     works: float
@@ -33,26 +37,126 @@ class OperatingPoint:
     mean_trials: float
 
 
-def operating_point(p: float, settings: VerdictSettings) -> OperatingPoint:
-    """The exact operating characteristic of the verdict's sequential test at ``p``."""
+@dataclass(frozen=True)
+class EntryPath:
+    """One entry's test at true ``p``: per look (``looks``), the probability that it is
+    decided works / fails at that look; ``undecided`` is the rest."""
+
+    looks: tuple[int, ...]
+    works_at: np.ndarray
+    fails_at: np.ndarray
+
+    @property
+    def undecided(self) -> float:
+        return float(max(0.0, 1.0 - self.works_at.sum() - self.fails_at.sum()))
+
+
+def _check(p: float) -> None:
     if not 0.0 <= p <= 1.0:
         raise ValueError(f"p = {p!r} is outside the allowed range [0, 1]")
+
+
+def entry_status(successes: int, drops: int, settings: VerdictSettings) -> str:
+    """One entry's decision at a look, by the verdict's rule (the SPRT's before any earlier
+    crossing: the path below absorbs a crossing at the look it happens)."""
+    if settings.rule == SPRT:
+        return Wald(settings.works_p, settings.fails_p, settings.error).status(successes, drops)
+    return decide([successes], drops, settings.target)
+
+
+def entry_path(p: float, settings: VerdictSettings) -> EntryPath:
+    """The exact distribution of one entry's decision and the look it comes at: the
+    distribution of the success count propagated from look to look (binomial steps), the
+    counts that decide absorbed where they decide."""
+    _check(p)
+    at = looks(settings)
     alive = np.array([1.0])  # P(count = k and still undecided), k = 0..n
+    works, fails = np.zeros(len(at)), np.zeros(len(at))
     n = 0
-    works = fails = mean = 0.0
-    for look in looks(settings):
+    for i, look in enumerate(at):
         step = binom.pmf(np.arange(look - n + 1), look - n, p)
         alive = np.convolve(alive, step)
         n = look
         for k in range(n + 1):
-            decision = decide([k], n, settings.target)
-            if decision == "works":
-                works += alive[k]
-            elif decision == "fails":
-                fails += alive[k]
+            decision = entry_status(k, n, settings)
+            if decision == WORKS:
+                works[i] += alive[k]
+            elif decision == FAILS:
+                fails[i] += alive[k]
             else:
                 continue
-            mean += n * alive[k]
             alive[k] = 0.0
+    return EntryPath(tuple(at), works, fails)
+
+
+def operating_point(p: float, settings: VerdictSettings) -> OperatingPoint:
+    """The exact operating characteristic of the verdict at ``p`` for one entry (a design
+    whose other entries are sure, p = 1, under the Wilson rule; see
+    :func:`design_operating_point` for a design)."""
+    path = entry_path(p, settings)
+    at = np.array(path.looks, dtype=float)
+    rest = path.undecided
+    mean = float((path.works_at + path.fails_at) @ at) + at[-1] * rest
+    return OperatingPoint(p, float(path.works_at.sum()), float(path.fails_at.sum()), rest, mean)
+
+
+def design_operating_point(p: float, settings: VerdictSettings, entries: int = 2) -> OperatingPoint:
+    """The exact operating characteristic of the whole verdict for a design whose
+    ``entries`` (1 or 2) each succeed with probability ``p``, independently from drop to
+    drop and from each other (the model; a trial's two drops share the made feeder and its
+    friction, so real entries are positively correlated). Wilson: the joint count
+    distribution over both entries, decided jointly at each look. SPRT: each entry's
+    :func:`entry_path` combined: works when both work (at the later look), fails at the
+    first look some entry fails."""
+    _check(p)
+    if entries == 1:
+        return operating_point(p, settings)
+    if entries != 2:
+        raise ValueError(f"entries = {entries!r} must be 1 or 2")
+    if settings.rule == SPRT:
+        return _sprt_pair(p, settings)
+    return _wilson_pair(p, settings)
+
+
+def _sprt_pair(p: float, settings: VerdictSettings) -> OperatingPoint:
+    path = entry_path(p, settings)
+    at = np.array(path.looks, dtype=float)
+    last = len(at) - 1
+    w, f = path.works_at, path.fails_at
+    idx = np.arange(len(at))
+    works = float(w.sum() ** 2)
+    mean = float(w @ (at[np.maximum.outer(idx, idx)]) @ w)
+    # fails: the first look at which an entry fails, the other entry anywhere at or after
+    # it (or decided works at any look, or undecided)
+    fails = 0.0
+    for i in idx:
+        # P(min failing look = i): A fails at i and B does not fail before i, or the reverse
+        other = 1.0 - f[:i].sum()  # B does not fail before look i
+        both_at_i = f[i] * f[i]
+        q = 2.0 * f[i] * other - both_at_i
+        fails += q
+        mean += q * at[i]
+    undecided = max(0.0, 1.0 - works - fails)
+    mean += undecided * at[last]
+    return OperatingPoint(p, works, fails, undecided, mean)
+
+
+def _wilson_pair(p: float, settings: VerdictSettings) -> OperatingPoint:
+    at = looks(settings)
+    alive = np.ones((1, 1))  # P(counts = (kA, kB) and still undecided)
+    works = fails = mean = 0.0
+    n = 0
+    for look in at:
+        step = binom.pmf(np.arange(look - n + 1), look - n, p)
+        alive = convolve2d(alive, np.outer(step, step))
+        n = look
+        bounds = np.array([wilson_interval(k, n) for k in range(n + 1)])
+        high = bounds[:, 0] > settings.target
+        low = bounds[:, 1] < settings.target
+        w_mask = np.outer(high, high)
+        f_mask = np.logical_or.outer(low, low)
+        w, f = float(alive[w_mask].sum()), float(alive[f_mask & ~w_mask].sum())
+        works, fails, mean = works + w, fails + f, mean + n * (w + f)
+        alive[w_mask | f_mask] = 0.0
     rest = float(alive.sum())
     return OperatingPoint(p, works, fails, rest, mean + n * rest)

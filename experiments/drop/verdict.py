@@ -13,7 +13,9 @@ orientation's interval clears ``target``. Trials run in batches and stop as soon
 decided either way (every lower bound above the target, or some upper bound below it), so a
 clear case costs ``min_drops`` trials and only a marginal one runs to ``max_drops``; the
 repeated looks make the intervals slightly optimistic at the stopping time, which is why the
-decision needs the whole interval on one side. Every drop's outcome goes into the orientation
+decision needs the whole interval on one side. The ``sprt`` rule decides instead by Wald's
+sequential test per entry (:mod:`experiments.drop.sequential`), which may look after every
+trial and keeps its stated error rates. Every drop's outcome goes into the orientation
 transition matrix (entry -> :data:`experiments.drop.outcomes.OUTCOMES`).
 """
 
@@ -28,7 +30,8 @@ from dataclasses import dataclass
 from experiments.drop.outcomes import OUTCOMES, SIMULATION_FAULT, classify
 from experiments.drop.passive import passive_drop
 from experiments.drop.perturbations import DropDraw, draw, toleranced
-from experiments.drop.verdict_settings import VerdictSettings
+from experiments.drop.sequential import UNDECIDED, Wald, advance, design_decision
+from experiments.drop.verdict_settings import SPRT, VerdictSettings
 from experiments.proportions import wilson_interval
 from feeders.design import DesignParameters
 from feeders.feeder import DEFAULT_FRICTION, ORIENTATIONS, DegenerateDesign, build_feeder
@@ -225,7 +228,9 @@ def verdict_of(
     t0 = time.perf_counter()
     trials: list[Trial] = []
     counted: list[Trial] = []  # the trials without a simulation fault
-    decision = "undecided"
+    decision = UNDECIDED
+    test = Wald(settings.works_p, settings.fails_p, settings.error)
+    statuses = (UNDECIDED,) * len(orientations)  # the SPRT's per entry, final once decided
     for look in looks(settings):
         while len(counted) < look and len(trials) < look + settings.max_drops:
             trial = run_trial(make_scene, orientations, settings, seed, len(trials))
@@ -233,8 +238,12 @@ def verdict_of(
             if not trial.fault:
                 counted.append(trial)
         counts = [sum(t.success[k] for t in counted) for k in range(len(orientations))]
-        decision = decide(counts, len(counted), settings.target)
-        if decision != "undecided" or len(counted) < look:
+        if settings.rule == SPRT:
+            statuses = advance(test, statuses, counts, len(counted))
+            decision = design_decision(statuses)
+        else:
+            decision = decide(counts, len(counted), settings.target)
+        if decision != UNDECIDED or len(counted) < look:
             break
     return Verdict(
         tuple(orientations), tuple(trials), settings.target, decision, time.perf_counter() - t0

@@ -11,13 +11,23 @@ from dataclasses import dataclass, field
 from experiments.drop.perturbations import Perturbations
 
 DYNAMIC_STEP = 1e-3  # h (s): validity.dynamic.DEFAULT_STEP (tests check they are equal)
+WILSON = "wilson"  # decide on Wilson 95% intervals against the target at each look
+SPRT = "sprt"  # decide by Wald's sequential probability ratio test, entry by entry
+RULES = (WILSON, SPRT)
+SPRT_KEYS = ("works_p", "fails_p", "error")  # what only the SPRT reads
 
 
 @dataclass(frozen=True)
 class VerdictSettings:
     """How a verdict is reached: the target probability, the trial budget (``min_drops``
     before the first look, then a look every ``batch``, at most ``max_drops``), the dynamic
-    level's step h (s) and longest drop (s), and the perturbations."""
+    level's step h (s) and longest drop (s), and the perturbations.
+
+    ``rule`` decides at each look: ``wilson`` (every entry's Wilson 95% interval on one
+    side of ``target``) or ``sprt`` (Wald's sequential probability ratio test per entry
+    between success probabilities ``works_p`` and ``fails_p``, each error rate ``error``:
+    :mod:`experiments.drop.sequential`); ``target`` stays the bar the reports' intervals
+    are read against."""
 
     target: float = 0.9
     min_drops: int = 10
@@ -26,8 +36,14 @@ class VerdictSettings:
     step: float = DYNAMIC_STEP
     t_max: float = 10.0
     perturbations: Perturbations = field(default_factory=Perturbations)
+    rule: str = WILSON
+    works_p: float = 0.95
+    fails_p: float = 0.8
+    error: float = 0.01
 
     def __post_init__(self) -> None:
+        if self.rule not in RULES:
+            raise ValueError(f"verdict.rule = {self.rule!r} is not one of {', '.join(RULES)}")
         checks = (
             ("target", self.target, 0.0, 1.0),
             ("min_drops", self.min_drops, 1, 100_000),
@@ -35,6 +51,9 @@ class VerdictSettings:
             ("max_drops", self.max_drops, 1, 100_000),
             ("step", self.step, 1e-6, 0.1),
             ("t_max", self.t_max, 1e-3, 3600.0),
+            ("works_p", self.works_p, 0.001, 0.999),
+            ("fails_p", self.fails_p, 0.001, 0.999),
+            ("error", self.error, 1e-6, 0.25),
         )
         for name, value, low, high in checks:
             if isinstance(value, bool) or not (
@@ -51,3 +70,15 @@ class VerdictSettings:
             raise ValueError(
                 f"verdict.min_drops = {self.min_drops} is more than max_drops = {self.max_drops}"
             )
+        if self.fails_p >= self.works_p:
+            raise ValueError(
+                f"verdict.fails_p = {self.fails_p!r} must be below works_p = {self.works_p!r}"
+            )
+
+    def rule_fields(self) -> dict[str, object]:
+        """The fields of the rule as a config holds them: ``rule`` and the SPRT's
+        probabilities and error only when it is the rule (a Wilson config reads as it
+        always has, so its results key does not change)."""
+        if self.rule == WILSON:
+            return {}
+        return {"rule": self.rule, **{k: getattr(self, k) for k in SPRT_KEYS}}

@@ -260,11 +260,10 @@ def fresh_ranking(comparison: dict[str, Any]) -> list[dict[str, Any]]:
                 "exit_time_s": slower_exit_time(entry),
             }
         )
-    ranked.sort(
-        key=lambda r: (
-            not r["confirmed"],
-            -r["lower"],
-            float("inf") if r["exit_time_s"] is None else r["exit_time_s"],
-        )
-    )
+    ranked.sort(key=_fresh_order)
     return ranked
+
+
+def _fresh_order(r: dict[str, Any]) -> tuple[bool, float, float]:
+    time = r["exit_time_s"]
+    return (not r["confirmed"], -float(r["lower"]), float("inf") if time is None else time)

@@ -20,6 +20,8 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
       - level: passive                    # the design's verdict: success probability over
         verdict: {target: 0.9, min_drops: 5, batch: 10, max_drops: 200}   # perturbed
         perturbations: {position: 0.05, yaw: 0.05, speed: 0.05, friction: 0.2, tolerance: 0.01}
+        # or Wald's SPRT per entry, a look after every trial (docs/verdict.md):
+        # verdict: {rule: sprt, works_p: 0.95, fails_p: 0.8, error: 0.01, min_drops: 1, batch: 1}
     holdout: {fraction: 0.25, seed: 7}    # designs that climb every rung whatever their
                                           # verdicts: the sample that measures the pruning
     workers: 2                            # processes (local executor)
@@ -69,7 +71,7 @@ class Rung:
     runs: int = 1
     time_s: float = 1.0
     propagations: int | None = None
-    verdict: dict[str, float] = field(default_factory=dict)
+    verdict: dict[str, Any] = field(default_factory=dict)
     perturbations: dict[str, float] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
@@ -149,12 +151,17 @@ def _passive_rung(spec: Any, field_name: str) -> Rung:
     return Rung(
         PASSIVE,
         (),
-        verdict={k: getattr(settings, k) for k in sorted(VERDICT_KEYS)},
+        verdict={
+            **{k: getattr(settings, k) for k in sorted(WILSON_KEYS)},
+            **settings.rule_fields(),
+        },
         perturbations=perturbations.to_dict(),
     )
 
 
-VERDICT_KEYS = {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
+WILSON_KEYS = {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
+# the SPRT's, held only when it is the rule (a Wilson config keeps its results key)
+VERDICT_KEYS = WILSON_KEYS | {"rule", "works_p", "fails_p", "error"}
 
 
 def _rung(spec: Any, field_name: str) -> Rung:

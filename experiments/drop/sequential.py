@@ -1,0 +1,78 @@
+"""Wald's sequential probability ratio test (SPRT) of one entry's success probability: the
+verdict's ``sprt`` rule (issue 21: most designs fail, and a test that stops as soon as the
+evidence allows decides them in a few trials, not ten).
+
+An entry is tested between two simple hypotheses about its drops' success probability p:
+``works_p`` (a feeder worth building) and ``fails_p`` (one that is not). After n drops with k
+successes the log-likelihood ratio is
+
+    LLR(k, n) = k ln(works_p / fails_p) + (n - k) ln((1 - works_p) / (1 - fails_p)),
+
+and the entry *works* the first time LLR >= ln((1 - e) / e), *fails* the first time
+LLR <= ln(e / (1 - e)), with e the test's error rate (Wald's bounds, alpha = beta = e: the
+probability of calling a ``fails_p`` entry working, or a ``works_p`` one failing, is at most
+about e, whenever one looks). An entry's decision is final: later drops from it count in the
+verdict's numbers but not in its test. The design works when every entry works and fails as
+soon as one fails; :mod:`experiments.drop.operating` computes what that does at any p exactly.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+WORKS, FAILS, UNDECIDED = "works", "fails", "undecided"
+
+
+@dataclass(frozen=True)
+class Wald:
+    """The test between ``works_p`` and ``fails_p`` (0 < fails_p < works_p < 1) with error
+    rate ``error`` on each side."""
+
+    works_p: float
+    fails_p: float
+    error: float
+
+    @property
+    def bound(self) -> float:
+        """The upper bound on the LLR; the lower one is its negative (alpha = beta)."""
+        return math.log((1.0 - self.error) / self.error)
+
+    def llr(self, successes: int, drops: int) -> float:
+        """The log-likelihood ratio of ``works_p`` over ``fails_p`` after ``drops`` drops
+        with ``successes`` successes."""
+        win = math.log(self.works_p / self.fails_p)
+        loss = math.log((1.0 - self.works_p) / (1.0 - self.fails_p))
+        return successes * win + (drops - successes) * loss
+
+    def status(self, successes: int, drops: int) -> str:
+        """``works``, ``fails`` or ``undecided`` for these counts (before any earlier
+        crossing is taken into account: see :func:`advance`)."""
+        value = self.llr(successes, drops)
+        if value >= self.bound:
+            return WORKS
+        if value <= -self.bound:
+            return FAILS
+        return UNDECIDED
+
+
+def advance(
+    test: Wald, statuses: Sequence[str], successes: Sequence[int], drops: int
+) -> tuple[str, ...]:
+    """Each entry's status after a look at ``drops`` drops: an entry already decided keeps
+    its decision, an undecided one is judged on its ``successes`` now."""
+    return tuple(
+        s if s != UNDECIDED else test.status(k, drops)
+        for s, k in zip(statuses, successes, strict=True)
+    )
+
+
+def design_decision(statuses: Sequence[str]) -> str:
+    """The design's decision from its entries': fails as soon as one fails, works when all
+    work, else undecided."""
+    if FAILS in statuses:
+        return FAILS
+    if all(s == WORKS for s in statuses):
+        return WORKS
+    return UNDECIDED
