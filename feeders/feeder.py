@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from shapely.geometry import LineString, Point, Polygon
+from shapely.geometry import Point, Polygon
 
 from feeders.design import DesignParameters
 from feeders.part import DEFAULT_PEG, Peg
@@ -204,20 +204,48 @@ def protuberance(design: DesignParameters) -> tuple[np.ndarray, np.ndarray]:
     return finger, np.array([p.fx, p.fy, p.r])
 
 
-def _check_crossings(edges: list[Edge]) -> None:
-    lines = [LineString([e.start, e.end]) for e in edges]
-    for i in range(len(edges)):
-        for j in range(i + 1, len(edges)):
-            adjacent = j == i + 1 or (i == 0 and j == len(edges) - 1)
-            inter = lines[i].intersection(lines[j])
-            if inter.is_empty:
-                continue
-            if adjacent and inter.geom_type == "Point":
-                continue
-            names = tuple(dict.fromkeys(edges[i].parameters + edges[j].parameters))
-            raise DegenerateDesign(
-                f"walls cross: the {edges[i].label} meets the {edges[j].label}", names
-            )
+def _segments(edges: list[Edge]) -> np.ndarray:
+    """``(n, 2, 2)``: each edge's start and end."""
+    return np.array([(e.start, e.end) for e in edges], dtype=np.float64)
+
+
+def _check_crossings(edges: list[Edge], lines: np.ndarray) -> None:
+    """:class:`DegenerateDesign` for the first pair (in edge order) of edges that meet other
+    than at a shared end. ``lines``: the edges as shapely line strings. Pairs whose bounding
+    boxes are apart cannot meet (GEOS finds no intersection there either) and are not asked."""
+    ends = _segments(edges)
+    low, high = ends.min(axis=1), ends.max(axis=1)
+    first, second = np.triu_indices(len(edges), 1)
+    near = np.all(low[first] <= high[second], axis=1) & np.all(low[second] <= high[first], axis=1)
+    first, second = first[near], second[near]
+    meets = shapely.intersection(lines[first], lines[second])
+    for i, j, inter in zip(first.tolist(), second.tolist(), meets, strict=True):
+        if inter.is_empty:
+            continue
+        adjacent = j == i + 1 or (i == 0 and j == len(edges) - 1)
+        if adjacent and inter.geom_type == "Point":
+            continue
+        names = tuple(dict.fromkeys(edges[i].parameters + edges[j].parameters))
+        raise DegenerateDesign(
+            f"walls cross: the {edges[i].label} meets the {edges[j].label}", names
+        )
+
+
+def _clearly_apart(shapes: list[Polygon], pieces: list[np.ndarray], disc: np.ndarray) -> bool:
+    """Whether every polygon of ``shapes`` is more than ``1e-9`` (length) from every convex
+    piece and from the disc (x, y, r), so that it overlaps their union nowhere. False says
+    nothing (the union decides)."""
+    gap = 1e-9
+    k = max(len(q) for q in pieces)
+    padded = np.array([np.concatenate([q, np.repeat(q[-1:], k - len(q), axis=0)]) for q in pieces])
+    solids = shapely.polygons(padded)  # repeated closing vertices: the same convex pieces
+    centre = Point(disc[0], disc[1])
+    for shape in shapes:
+        if shapely.distance(shape, centre) <= disc[2] + gap:
+            return False
+        if np.any(shapely.distance(solids, shape) <= gap):
+            return False
+    return True
 
 
 def _pose_polygon(part: Peg, pose: Pose) -> Polygon:
@@ -271,7 +299,8 @@ def build_feeder(
     if not (math.isfinite(roof_rise) and 0.0 <= roof_rise <= 10.0):
         raise ValueError(f"roof_rise = {roof_rise!r} is outside the allowed range [0, 10]")
     edges = interior_edges(p, part, roof_rise)
-    _check_crossings(edges)
+    lines = shapely.linestrings(_segments(edges))
+    _check_crossings(edges, lines)
     outline = np.array([e.start for e in edges])
     interior = Polygon(outline)
     if not interior.is_valid or interior.area <= 0:
@@ -280,15 +309,16 @@ def build_feeder(
     finger, tip = protuberance(p)
     tip_point = Point(p.fx, p.fy)
     if not interior.contains(tip_point):
-        nearest = min(edges, key=lambda e: LineString([e.start, e.end]).distance(tip_point))
+        nearest = edges[int(np.argmin(shapely.distance(lines, tip_point)))]
         raise DegenerateDesign(
             f"the protuberance tip f = ({p.fx:g}, {p.fy:g}) lies inside a wall ({nearest.label})",
             tuple(dict.fromkeys(("fx", "fy", *nearest.parameters))),
         )
-    for edge in edges:
+    tip_distances = shapely.distance(lines, tip_point)
+    for edge, distance in zip(edges, tip_distances.tolist(), strict=True):
         if edge.label in ("left cavity wall", "cavity floor (left)", "left chamfer"):
             continue  # the finger grows out of the left side: touching it there is by design
-        if LineString([edge.start, edge.end]).distance(tip_point) <= p.r:
+        if distance <= p.r:
             raise DegenerateDesign(
                 f"the protuberance (f, r = {p.r:g}) reaches the {edge.label}",
                 tuple(dict.fromkeys(("fx", "fy", "r", *edge.parameters))),
@@ -307,15 +337,16 @@ def build_feeder(
         com = centre + part.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
         starts[orientation] = (float(com[0]), float(com[1]), yaw)
 
-    solid = shapely.unary_union(
-        [Polygon(w) for w in wall_polygons] + [Polygon(finger), tip_point.buffer(p.r)]
-    )
-    for orientation, pose in starts.items():
-        if _pose_polygon(part, pose).intersection(solid).area > 1e-9:
-            raise DegenerateDesign(
-                f"the part does not fit at the top of the input chute ({orientation})",
-                ("a", "d", "theta"),
-            )
+    pieces = [*wall_polygons, finger]
+    placed = {o: _pose_polygon(part, pose) for o, pose in starts.items()}
+    if not _clearly_apart(list(placed.values()), pieces, tip):
+        solid = shapely.unary_union([Polygon(w) for w in pieces] + [tip_point.buffer(p.r)])
+        for orientation, shape in placed.items():
+            if shape.intersection(solid).area > 1e-9:
+                raise DegenerateDesign(
+                    f"the part does not fit at the top of the input chute ({orientation})",
+                    ("a", "d", "theta"),
+                )
 
     depth = 2.0 * part.length
     heavy_below = part.length / 2 - part.com_offset
