@@ -2,7 +2,8 @@
 scenes beside MuJoCo and pymunk (when installed), the feeder's convergence, the ladder's cost
 against its verdicts' error, speed tables; or, with ``--level``, one level's detailed speed;
 or, with ``--agreement``, the same perturbed feeder drops in partfeeder, MuJoCo and pymunk and
-how they agree (:mod:`experiments.bench.agreement`)."""
+how they agree (:mod:`experiments.bench.agreement`); or, with ``--trial``, the cost of one
+verdict trial and its parts (:mod:`experiments.bench.trial_cost`)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import sys
 from pathlib import Path
 
 from experiments.cli.kernels import compile_once
-from experiments.cli.usage import UsageError, check_out_dir, check_seed
+from experiments.cli.usage import UsageError, check_count, check_out_dir, check_seed
 
 SECTIONS = ("analytic", "speed", "feeder", "ladder")  # experiments.bench.suite.SECTIONS
 DETAIL_LEVELS = ("geometric", "kinematic")
@@ -41,6 +42,16 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         choices=DETAIL_LEVELS,
         default=None,
         help="instead: one level's detailed speed report as text (no files)",
+    )
+    bench.add_argument(
+        "--trial",
+        type=int,
+        nargs="?",
+        const=200,
+        default=None,
+        metavar="N",
+        help="instead: median ms of a verdict trial of table3 over N trials (default 200) and "
+        "each part's share, as text (no files)",
     )
     bench.add_argument("--json", action="store_true", help="print the data as JSON")
     agreement = bench.add_argument_group(
@@ -87,6 +98,17 @@ def _detail(args: argparse.Namespace, repeats: int) -> int:
 
     results = run_benchmarks(repeats=repeats, seed=args.seed, quick=args.quick)
     print(json.dumps(results, indent=2) if args.json else format_report(results))
+    return 0
+
+
+def _trial(args: argparse.Namespace) -> int:
+    """``--trial N``: the cost of one verdict trial and its parts (issue 21)."""
+    check_count(args.trial, "--trial", 100_000)
+    check_seed(args.seed)
+    from experiments.bench.trial_cost import format_trial_cost, trial_cost
+
+    results = trial_cost("table3", args.trial, args.seed)
+    print(json.dumps(results, indent=2) if args.json else format_trial_cost(results))
     return 0
 
 
@@ -160,6 +182,8 @@ def run(args: argparse.Namespace) -> int:
     not be written was refused only after a section had run and printed its progress)."""
     if args.agreement:
         return _agreement(args)
+    if args.trial is not None:
+        return _trial(args)
     repeats = args.repeats if args.repeats is not None else (2 if args.quick else 5)
     if not 1 <= repeats <= 1000:
         raise UsageError(f"--repeats = {repeats} is outside the allowed range [1, 1000]")
