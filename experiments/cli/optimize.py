@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 from typing import Any, TextIO
 
+from experiments.cli.baseline import add_baseline_argument, baseline_of
 from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, out_dir
 from experiments.names import EXECUTOR_NAMES
@@ -43,16 +44,18 @@ def add_arguments(opt: argparse.ArgumentParser) -> None:
         "--scheduler", default=None, help="Dask scheduler address (tcp://host:port) for dask"
     )
     opt.add_argument("--workers", type=int, default=None, help="local worker processes")
+    add_baseline_argument(opt)
     opt.add_argument("--no-report", action="store_true", help="skip the HTML report")
     opt.add_argument("--json", action="store_true", help="print the results as JSON")
     opt.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
 class OptimizeProgress:
-    """Two bars with totals fixed when they start: the evaluations
-    (:func:`experiments.optimize.run.evaluations_total`: starts, every run's budget, table3;
-    a run that converges early jumps to its budget), with the best value and P(both) so far,
-    then the verdicts on fresh draws (the candidates', the optimum's and table3's).
+    """Bars with totals fixed when they start: the evaluations
+    (:func:`experiments.optimize.run.evaluations_total`: starts, every run's budget, the
+    baseline's; a run that converges early jumps to its budget), with the best value and
+    P(both) so far, then the verdicts on fresh draws (the candidates', the optimum's and the
+    baseline's), then the optimum's margins (16 axes; its verdict at nominal comes first).
     ``stream`` None draws on stderr when it is a terminal (tests give a ``StringIO``)."""
 
     def __init__(self, quiet: bool, stream: TextIO | None = None):
@@ -71,6 +74,10 @@ class OptimizeProgress:
             self.close()
             desc = f"verdicts ({info['trials']} trials each)"
             self.bar = bar(info["verdicts"], desc, "verdict", stream=self.stream)
+        elif event == "margins":
+            self.close()
+            self.bar = bar(info["axes"], "margins of the optimum", "axis", stream=self.stream)
+            self.bar.set_postfix_str("its verdict at nominal first", refresh=False)
         elif self.bar is None:
             return
         elif event == "run":
@@ -81,8 +88,8 @@ class OptimizeProgress:
             best = info["best"]
             self.bar.set_postfix(best=f"{best['value']:.4f}", both=best["both"], refresh=False)
             self.bar.update()
-        elif event == "verdict":
-            self.bar.set_postfix_str(info["label"], refresh=False)
+        elif event in ("verdict", "axis"):
+            self.bar.set_postfix_str(info.get("label") or info.get("axis") or "", refresh=False)
             self.bar.update()
 
     def close(self) -> None:
@@ -132,6 +139,7 @@ def run(args: argparse.Namespace) -> int:
         from experiments.executors.cluster import check_scheduler
 
         check_scheduler(args.scheduler)
+    baseline = baseline_of(args.baseline)
     best = sweep_best_designs(args.sweep)
     if not config.presets and not best:
         raise UsageError(
@@ -151,7 +159,9 @@ def run(args: argparse.Namespace) -> int:
             compile_once(["passive"])  # before the workers start: they then only load them
         t0 = time.perf_counter()
         try:
-            results = optimise(config, out, best, args.executor, args.scheduler, progress=bar)
+            results = optimise(
+                config, out, best, args.executor, args.scheduler, progress=bar, baseline=baseline
+            )
         except (StoreMismatch, StoreDamaged) as exc:
             raise UsageError(f"{out}: {exc}") from None
         except KeyboardInterrupt:

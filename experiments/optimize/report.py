@@ -1,8 +1,12 @@
 """The report of an optimisation: ``report.html`` with its figures in ``figures/``.
 
-Sections: the optimum beside the paper's table3 (its 12 values, as the paper's Table 3, with
-Table 2's box), both designs' verdicts on fresh draws (probability with interval, transition
-matrix, the strips of their nominal drops as Figs. 10-11), Eq. 10 in the same model, and the
+In the order a designer reads it: what to build (the recommendation box,
+:mod:`experiments.report_kit.recommendation`), why this design (the optimum beside the
+baseline on the same fresh draws: numbers, paired draws, transition matrices, the optimum
+drawn over the baseline, parameter differences; :mod:`experiments.report_kit.
+comparison_section`), the strips of both designs' nominal drops (the paper's Figs. 10-11), how
+much tolerance the optimum has (its margins, :mod:`experiments.report_kit.margins_section`),
+then how it was found: Eq. 10 in the same model, the validation of the candidates and the
 comparison of methods (convergence curves: best robust objective and best P(both) of the K
 draws against evaluations, every seed). The numbers come from the results of
 :func:`experiments.optimize.run.results`; this module only shows them.
@@ -18,8 +22,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from experiments.report_kit.cells import DASH, cell, number
+from experiments.report_kit.comparison_section import comparison_html
+from experiments.report_kit.margins_section import margins_html, margins_sentence
 from experiments.report_kit.page import STYLE, figure_html, html_table
-from experiments.report_kit.verdict_section import design_verdict_html, strip_name
+from experiments.report_kit.recommendation import recommendation_html
+from experiments.report_kit.verdict_section import strip_name
 from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS
 
 if TYPE_CHECKING:
@@ -32,7 +39,12 @@ METHOD_COLOURS = {
     "nelder-mead": "#2ca02c",
     "powell": "#9467bd",
 }
-LABELS = ("optimum", "table3")
+OPTIMUM = "optimum"
+
+
+def labels(results: dict[str, Any]) -> tuple[str, str]:
+    """The optimum's label and the baseline's (``compared_with``; table3 in older results)."""
+    return OPTIMUM, str(results.get("compared_with") or "table3")
 
 
 NEAR_THE_END = 0.9  # the best found after this fraction of a run's budget: not converged
@@ -165,7 +177,7 @@ def strip_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[st
     from feeders.scene_yaml import environment_from_dict
 
     out = {}
-    for label in LABELS:
+    for label in labels(results):
         entry = results.get(label)
         if entry is None:
             continue
@@ -186,14 +198,38 @@ def strip_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[st
 
 
 def write_report(out: Path, config, results: dict[str, Any]) -> Path:
-    """Write ``out/report.html`` and its figures; returns the page's path."""
+    """Write ``out/report.html`` and its figures, unless the report there was written from the
+    same results by the same code and is intact (:mod:`experiments.optimize.report_cache`);
+    returns the page's path."""
+    from experiments.optimize.report_cache import report_current, report_key, save_cache
+
+    page = out / "report.html"
+    key = report_key(results, config.to_dict())
+    if report_current(out, key):
+        return page
     figures_dir = out / "figures"
     figures_dir.mkdir(parents=True, exist_ok=True)
     figures = {CONVERGENCE: convergence_figure(results, figures_dir / f"{CONVERGENCE}.png")}
     figures.update(strip_figures(config, results, figures_dir))
-    page = out / "report.html"
+    figures.update(report_figures(config, results, figures_dir))
     page.write_text(html_page(results, figures))
+    save_cache(out, key)
     return page
+
+
+def report_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[str, Path]:
+    """The optimum drawn over the baseline (the comparison's overlay) and the margins chart."""
+    from experiments.report_kit.comparison_section import comparison_figures
+    from experiments.report_kit.margins_section import margins_figures
+    from feeders.scene_yaml import environment_from_dict
+
+    figures: dict[str, Path] = {}
+    comparison = results.get("comparison")
+    if comparison:
+        environment = environment_from_dict(config.feeder)
+        figures.update(comparison_figures(comparison, figures_dir, **environment))
+    figures.update(margins_figures(results.get("margins"), figures_dir))
+    return figures
 
 
 def _interval(ci: Any) -> str:
@@ -203,12 +239,14 @@ def _interval(ci: Any) -> str:
 
 
 def design_table_rows(results: dict[str, Any]) -> list[list[str]]:
-    """Table 3's layout: per parameter its Table 2 range, table3's value and the optimum's."""
+    """Table 3's layout: per parameter its Table 2 range, the baseline's value and the
+    optimum's."""
+    optimum, baseline = labels(results)
     rows = []
     for name in PARAMETER_NAMES:
         low, high = TABLE2_BOUNDS[name]
         row = [name, f"[{low:g}, {high:g}]"]
-        for label in ("table3", "optimum"):
+        for label in (baseline, optimum):
             entry = results.get(label)
             row.append(cell(entry["values"][name], ".4f") if entry else DASH)
         rows.append(row)
@@ -251,7 +289,7 @@ def eq10_rows(results: dict[str, Any]) -> list[list[str]]:
     """Per design: Eq. 10's G of the nominal drops, mean G and P(both) over the K draws and
     over the fresh verdict draws with its interval."""
     rows = []
-    for label in LABELS:
+    for label in labels(results):
         entry = results.get(label)
         if entry is None:
             continue
@@ -320,9 +358,44 @@ COMPARISON_HEADERS = [
 ]
 
 
+def chosen_sentence(results: dict[str, Any]) -> str:
+    """How the optimum was chosen, with the numbers of this run."""
+    final = results.get("final") or {}
+    k = results["objective"]["trials"]
+    return (
+        f"of the {cell(final.get('candidates'))} designs with the lowest robust objective R "
+        f"over K = {cell(k)} fixed draws, the one with the highest 95% lower bound of P(both) "
+        f"on {cell(final.get('trials'))} fresh trials (seed {cell(final.get('seed'))}), then "
+        "the lowest mean Eq. 10 G; its numbers here are on other fresh trials again (seed "
+        f"{cell((final.get('seed') or 0) + 1)}), the baseline's on the same ones"
+    )
+
+
+def _recommendation(results: dict[str, Any]) -> str:
+    comparison = results.get("comparison")
+    if not comparison:
+        return recommendation_html(
+            None, None, None, "", absent="the optimisation has not judged its optimum yet"
+        )
+    margins = results.get("margins")
+    return recommendation_html(OPTIMUM, comparison, margins, chosen_sentence(results))
+
+
+def _strips(results: dict[str, Any], figures: dict[str, Path]) -> list[str]:
+    parts = ["<h2>Nominal drops (the paper's Figs. 10-11)</h2>"]
+    for label in labels(results):
+        name = strip_name(label)
+        if name in figures:
+            parts.append(f"<h3>{html.escape(label)}</h3>")
+            parts.append(figure_html(figures, name, f"nominal drops of {label} from both entries"))
+    return parts if len(parts) > 1 else []
+
+
 def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
     e = html.escape
     obj = results["objective"]
+    comparison = results.get("comparison")
+    margins = results.get("margins")
     parts = [
         "<!DOCTYPE html>",
         '<html><head><meta charset="utf-8">',
@@ -331,31 +404,26 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
         f"<h1>Design optimisation: {e(results['name'])}</h1>",
         f'<p class="note">Generated {e(time.strftime("%Y-%m-%d %H:%M:%S"))}; '
         f"{cell(results['evaluations'])} designs evaluated, "
-        f"{cell(results.get('wall_time_s'), '.1f')} s wall time, "
-        f"{cell(results.get('worker_time_s'), '.1f')} s worker time.</p>",
+        f"{cell(results.get('worker_time_s'), '.1f')} s of worker time; this command "
+        f"{cell(results.get('wall_time_s'), '.1f')} s.</p>",
+        _recommendation(results),
+        *(comparison_html(comparison, figures) if comparison else []),
+        *_strips(results, figures),
+        *margins_html(margins, figures, results.get("margins_absent")),
+        "<h2>How it was found: the objective</h2>",
         "<p>The objective (lower is better): "
         f"{e(obj['definition'])}. K = {cell(obj['trials'])} perturbation draws (seed "
         f"{cell(obj['seed'])}), the same for every design; w = {cell(obj['weight'])}. "
         "The verdicts below use fresh draws (another seed), so the optimum's probability is "
         "not the one it was selected on.</p>",
-        "<h2>The optimum beside the paper's Table 3</h2>",
-        html_table(
-            ["parameter", "Table 2 range", "table3", "optimum"], design_table_rows(results), (0, 1)
-        ),
-        "<h2>Validation: the best designs by R on fresh draws</h2>",
+        "<h3>Eq. 10 and the verdicts in the same model</h3>",
+        html_table(EQ10_HEADERS, eq10_rows(results), (0, 5, 7)),
+        "<h3>Validation: the best designs by R on fresh draws</h3>",
         '<p class="note">R is minimised over K fixed draws, so the best R flatters its '
         "design; the optimum is the candidate with the highest lower bound of P(both) on fresh "
-        "draws, then the lowest mean G. Its verdict below uses other fresh draws again.</p>",
+        "draws, then the lowest mean G. Its verdict above uses other fresh draws again.</p>",
         html_table(CANDIDATE_HEADERS, candidate_rows(results), (6,)),
-        "<h2>Eq. 10 and the verdicts in the same model</h2>",
-        html_table(EQ10_HEADERS, eq10_rows(results), (0, 5, 7)),
-    ]
-    for label in LABELS:
-        entry = results.get(label)
-        if entry is not None and entry.get("verdict"):
-            parts += design_verdict_html({"design_id": label, "verdict": entry["verdict"]}, figures)
-    parts += [
-        "<h2>Methods on the same budget</h2>",
+        "<h3>Methods on the same budget</h3>",
         html_table(COMPARISON_HEADERS, comparison_rows(results), (0,)),
         *([f'<p class="note">{e(flat_p_sentence(results))}.</p>'] if p_both_flat(results) else []),
         figure_html(figures, CONVERGENCE, "convergence of every run"),
@@ -369,7 +437,8 @@ def summary_text(results: dict[str, Any]) -> str:
     """The results as a few plain-text tables, for the terminal."""
     lines = [f"optimisation {results['name']}: {results['evaluations']} designs evaluated"]
     lines.append("")
-    lines.append(f"{'parameter':>10} {'Table 2 range':>16} {'table3':>9} {'optimum':>9}")
+    baseline = labels(results)[1]
+    lines.append(f"{'parameter':>10} {'Table 2 range':>16} {baseline:>9} {'optimum':>9}")
     for row in design_table_rows(results):
         lines.append(f"{row[0]:>10} {row[1]:>16} {row[2]:>9} {row[3]:>9}")
     lines.append("")
@@ -384,7 +453,23 @@ def summary_text(results: dict[str, Any]) -> str:
     lines.append(" | ".join(COMPARISON_HEADERS))
     for row in comparison_rows(results):
         lines.append(" | ".join(row))
+    lines.append("")
+    lines.append(margins_line(results))
     wall = results.get("wall_time_s")
     if wall is not None and not math.isnan(wall):
         lines.append(f"wall time: {wall:.1f} s")
     return "\n".join(lines)
+
+
+def margins_line(results: dict[str, Any]) -> str:
+    """One line: the optimum's tightest margins and what measuring them cost (or why it has
+    none)."""
+    margins = results.get("margins")
+    if margins is None:
+        return f"margins of the optimum: none: {results.get('margins_absent') or 'not measured'}"
+    cost = margins.get("cost") or {}
+    return (
+        f"margins of the optimum: {margins_sentence(margins)}; cost {cell(cost.get('drops'))} "
+        f"drops, {cell(cost.get('wall_time_s'), '.1f')} s on {cell(cost.get('workers'))} "
+        "worker(s)"
+    )

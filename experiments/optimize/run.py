@@ -10,12 +10,16 @@
    the best R flatters its design (measured: a design 12 of 12 on its K draws was 98 of 100 on
    fresh ones). The optimum is the candidate with the highest lower bound of P(both) there,
    then the lowest mean G.
-4. The optimum and the paper's table3 get their reported verdict on other fresh draws (seed
-   ``final.seed + 1``, the same for both: a paired comparison, and not the draws the optimum
-   was chosen on), and one nominal drop per entry each (Eq. 10's G as the paper computes it).
+4. The optimum and the baseline (the paper's table3 unless another is given) get their
+   reported verdict on other fresh draws (seed ``final.seed + 1``, the same for both: a paired
+   comparison, :mod:`experiments.optimize.comparison`, and not the draws the optimum was
+   chosen on), and one nominal drop per entry each (Eq. 10's G as the paper computes it).
+5. When the optimum works on those draws, its tolerance margins
+   (:mod:`experiments.optimize.tolerance`).
 
-Every evaluation and verdict is stored as it finishes (:mod:`experiments.optimize.store`): a
-run started again in the same directory repeats none of them.
+Every evaluation, verdict and margin is stored as it finishes
+(:mod:`experiments.optimize.store`): a run started again in the same directory repeats none
+of them, and another baseline costs only its own verdict.
 """
 
 from __future__ import annotations
@@ -28,21 +32,31 @@ from typing import Any
 import numpy as np
 
 from experiments.drop.passive import eq10_objective, passive_drop
-from experiments.drop.verdict import Verdict, decide
+from experiments.drop.verdict import Verdict
 from experiments.executors import open_pool
 from experiments.optimize import store
+from experiments.optimize.comparison import stored_comparison, verdict_of_trials
 from experiments.optimize.config import OptimizeConfig
 from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
 from experiments.optimize.methods import METHODS, POPULATION_METHODS
-from experiments.optimize.objective import eq10_terms, trial_from_dict
+from experiments.optimize.objective import eq10_terms
+from experiments.optimize.tolerance import AxisCallback, optimum_margins, settings_key
 from experiments.proportions import wilson_interval
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignParameters, preset
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
 
 DATABASE = "evaluations.sqlite"
-REFERENCE = "table3"
+REFERENCE = "table3"  # the baseline unless another is given
 STARTS_RUN = "starts"
+OPTIMUM = "optimum"
+
+Baseline = tuple[str, list[float]]  # (label, 12 values)
+
+
+def default_baseline() -> Baseline:
+    """The paper's table3, as ``(label, 12 values)``."""
+    return REFERENCE, preset(REFERENCE).to_vector().tolist()
 
 
 def to_unit(values: np.ndarray) -> np.ndarray:
@@ -79,12 +93,19 @@ def optimise(
     executor: str = "local",
     scheduler: str | None = None,
     progress: Progress | None = None,
+    baseline: Baseline | None = None,
+    margins: bool = True,
 ) -> dict[str, Any]:
     """Run the optimisation of ``config`` in directory ``out`` (resuming what is stored there)
-    and return its results as plain data (:func:`results`)."""
+    and return its results as plain data (:func:`results`). ``baseline`` ``(label, 12
+    values)``, table3 unless given, is judged on the optimum's fresh draws; ``margins``: the
+    optimum's margins are measured (or read from the store) when it works."""
     starts = start_designs(config, sweep_best or [])
     if not starts:
         raise ValueError("start: no start designs (give start.presets, or --from a sweep)")
+    baseline = baseline or default_baseline()
+    label, base_values = baseline[0], [float(v) for v in baseline[1]]
+    base_key = store.design_key(base_values)
     db = store.connect(out / DATABASE)
     try:
         store.claim(db, {**config.to_dict(), "starts": starts}, config.objective_key())
@@ -101,24 +122,52 @@ def optimise(
                     },
                 )
             _run_methods(ev, config, starts, progress)
-            ev.batch(REFERENCE, 1, [_reference()])  # its objective, to compare (cached if a start)
+            # the baseline's objective, to compare (stored already if it was a start)
+            ev.batch(baseline_run(base_key), 1, [base_values])
             optimum = _validate(ev, config, _runs(config))
-            _verdicts(
-                ev, config, {"optimum": optimum, REFERENCE: store.design_key(_reference())}, 1
-            )
+            _verdicts(ev, config, {OPTIMUM: optimum, label: base_key}, 1)
+        if margins and _works(db, config, OPTIMUM):
+            measured = store.stored_margins(db, optimum, settings_key(config)) is not None
+            on_axis = None if measured else _axis_progress(progress)
+            optimum_margins(db, config, optimum, OPTIMUM, config.workers, on_axis=on_axis)
         wall = time.perf_counter() - t0
-        out_results = results(db, config, starts, wall)
+        out_results = results(db, config, starts, wall, baseline)
         out_results["new_evaluations"] = ev.computed
         return out_results
     finally:
         db.close()
 
 
+def baseline_run(key: str) -> str:
+    """The run label under which the baseline's objective is asked (one per design)."""
+    return f"baseline {key}"
+
+
+def _works(db, config: OptimizeConfig, label: str) -> bool:
+    stored = store.stored_verdict(db, label)
+    return stored is not None and verdict_of_trials(stored["trial_data"], config.final_target).works
+
+
+def _axis_progress(progress: Progress | None) -> AxisCallback | None:
+    """The margins' progress: a ``margins`` event with the fixed number of axes, then an
+    ``axis`` event as each finishes."""
+    if progress is None:
+        return None
+    from experiments.optimize.tolerance import AXES
+
+    progress("margins", {"axes": AXES})
+
+    def on_axis(margin: Any) -> None:
+        progress("axis", {"axis": margin.axis.name})
+
+    return on_axis
+
+
 def evaluations_total(config: OptimizeConfig, starts: int) -> int:
     """The evaluations an optimisation asks for, as its progress counts them: the starts,
-    every run's budget (a run that stops early is counted as having spent it) and table3's
-    (compared with the optimum). Fixed before the first evaluation, so a progress bar's total
-    and time estimate hold."""
+    every run's budget (a run that stops early is counted as having spent it) and the
+    baseline's (compared with the optimum). Fixed before the first evaluation, so a progress
+    bar's total and time estimate hold."""
     return starts + sum(budget for _, budget in _runs(config)) + 1
 
 
@@ -159,15 +208,26 @@ def _run_methods(
 
 def _verdicts(ev: Evaluator, config: OptimizeConfig, designs: dict[str, str], offset: int) -> None:
     """The fixed-sample verdict (``final.trials`` trials, seed ``final.seed + offset``) of each
-    labelled design key, unless stored already for the same design and seed."""
-    seed = config.final_seed + offset
+    labelled design key, unless stored already for the same design, seed and trials (under
+    its label, or under another: then copied, not run again)."""
+    seed, trials = config.final_seed + offset, config.final_trials
     for label, key in designs.items():
         stored = store.stored_verdict(ev.db, label)
-        if stored is None or (stored["key"], stored["seed"]) != (key, seed):
-            done = ev.run_trials({key: store.design_of_key(key)}, seed, config.final_trials)[key]
-            if done.reason is not None or len(done.trials) != config.final_trials:
-                raise RuntimeError(f"the verdict of the {label} design failed: {done.reason}")
-            store.record_verdict(ev.db, label, key, seed, done.trials)
+        if stored is None or (stored["key"], stored["seed"], len(stored["trial_data"])) != (
+            key,
+            seed,
+            trials,
+        ):
+            found = store.find_verdict(ev.db, key, seed, trials)
+            if found is not None:
+                store.record_verdict(ev.db, label, key, seed, found["trial_data"])
+            else:
+                t0 = time.perf_counter()
+                done = ev.run_trials({key: store.design_of_key(key)}, seed, trials)[key]
+                if done.reason is not None or len(done.trials) != trials:
+                    raise RuntimeError(f"the verdict of the {label} design failed: {done.reason}")
+                store.record_verdict(ev.db, label, key, seed, done.trials)
+                store.record_verdict_time(ev.db, key, seed, trials, time.perf_counter() - t0)
         if ev.progress:
             ev.progress("verdict", {"label": label})
 
@@ -178,14 +238,14 @@ def _validate(ev: Evaluator, config: OptimizeConfig, runs: list[tuple[str, int]]
     (seed ``final.seed``) has the highest lower bound of P(both), then the lowest mean G. Its
     reported verdict is on other fresh draws again (:func:`_verdicts` with offset 1)."""
     keys = ranked_keys(ev.db, runs, config.final_candidates)
-    if ev.progress:  # the candidates', then the optimum's and table3's (_verdicts offset 1)
+    if ev.progress:  # the candidates', then the optimum's and the baseline's (offset 1)
         ev.progress("verdicts", {"verdicts": len(keys) + 2, "trials": config.final_trials})
     _verdicts(ev, config, {candidate_label(i): k for i, k in enumerate(keys)}, 0)
     scored = []
     for i in range(len(keys)):
         stored = store.stored_verdict(ev.db, candidate_label(i))
         assert stored is not None
-        verdict = _verdict(stored["trial_data"], 0.0)
+        verdict = verdict_of_trials(stored["trial_data"], 0.0)
         mean_g = _mean_g(verdict, config.weight)
         scored.append((-verdict.both_interval[0], math.inf if mean_g is None else mean_g, i))
     return keys[min(scored)[2]]
@@ -199,10 +259,6 @@ def _mean_g(verdict: Verdict, weight: float) -> float | None:
     g = [eq10_terms(t, weight) for t in verdict.trials]
     g = [x for x in g if not math.isnan(x)]
     return sum(g) / len(g) if g else None
-
-
-def _reference() -> list[float]:
-    return preset(REFERENCE).to_vector().tolist()
 
 
 def _runs(config: OptimizeConfig) -> list[tuple[str, int]]:
@@ -227,13 +283,6 @@ def ranked_keys(db, runs: list[tuple[str, int]], count: int) -> list[str]:
 def best_key(db, runs: list[tuple[str, int]]) -> str:
     """The design with the lowest robust value asked by any of ``runs``."""
     return ranked_keys(db, runs, 1)[0]
-
-
-def _verdict(trial_data: list[dict], target: float) -> Verdict:
-    trials = tuple(trial_from_dict(t) for t in trial_data)
-    counts = [sum(t.success[k] for t in trials) for k in range(len(ORIENTATIONS))]
-    decision = decide(counts, len(trials), target) if trials else "fails"
-    return Verdict(tuple(ORIENTATIONS), trials, target, decision, 0.0)
 
 
 def _nominal(config: OptimizeConfig, values: list[float]) -> dict[str, Any]:
@@ -280,7 +329,7 @@ def _design_entry(
         },
     }
     if verdict is not None:
-        v = _verdict(verdict["trial_data"], config.final_target)
+        v = verdict_of_trials(verdict["trial_data"], config.final_target)
         entry["verdict"] = {**v.to_dict(), "seed": verdict["seed"]}
         entry["verdict"]["mean_g"] = _mean_g(v, config.weight)
     entry["nominal"] = _nominal(config, values)
@@ -288,11 +337,19 @@ def _design_entry(
 
 
 def results(
-    db, config: OptimizeConfig, starts: dict[str, list[float]], wall: float | None
+    db,
+    config: OptimizeConfig,
+    starts: dict[str, list[float]],
+    wall: float | None,
+    baseline: Baseline | None = None,
 ) -> dict[str, Any]:
     """The stored optimisation as plain data: per run its curve (evaluations, and of the best
-    design so far: R, P(both) over the K draws, mean G), the starts, the optimum and table3
-    (values, objective, verdict on fresh draws, nominal drops)."""
+    design so far: R, P(both) over the K draws, mean G), the starts, the optimum and the
+    baseline (table3 unless given; under its label, named by ``compared_with``: values,
+    objective, verdict on fresh draws, nominal drops), the validated ``candidates``, the
+    ``comparison`` of the optimum with the baseline on the same fresh draws
+    (:func:`experiments.optimize.comparison.stored_comparison`) and the optimum's ``margins``
+    (None when not measured, ``margins_absent`` says why)."""
     values = store.evaluations(db)
     calls = store.calls(db)
     runs = []
@@ -348,6 +405,12 @@ def results(
             "definition": "R = (K - S) + Gbar / (Gbar + 10 s): S of K trials succeed from "
             "both entries, Gbar their mean Eq. 10 G; degenerate designs R = K + 1",
         },
+        "final": {
+            "trials": config.final_trials,
+            "seed": config.final_seed,
+            "target": config.final_target,
+            "candidates": config.final_candidates,
+        },
         "starts": start_rows,
         "runs": runs,
         "evaluations": len(values),
@@ -355,14 +418,53 @@ def results(
     }
     if wall is not None:
         out["wall_time_s"] = wall
-    for label in ("optimum", REFERENCE):
-        stored = store.stored_verdict(db, label)
-        if stored is None:
+    label, base_values = baseline or default_baseline()
+    base_key = store.design_key(base_values)
+    out["compared_with"] = label
+    seed, trials = config.final_seed + 1, config.final_trials
+    verdicts = {}
+    for name, want in ((OPTIMUM, None), (label, base_key)):
+        stored = store.stored_verdict(db, name)
+        if stored is None or (stored["seed"], len(stored["trial_data"])) != (seed, trials):
             continue
+        if want is not None and stored["key"] != want:
+            continue  # the verdict of another baseline
         key = stored["key"]
-        out[label] = _design_entry(config, key, values[key], stored)
-    out["candidates"] = _candidates(db, config, values, out.get("optimum"))
+        verdicts[name] = stored
+        out[name] = _design_entry(config, key, values[key], stored)
+    out["candidates"] = _candidates(db, config, values, out.get(OPTIMUM))
+    out["comparison"] = None
+    if len(verdicts) == 2:
+        optimum = verdicts[OPTIMUM]
+        times = [store.verdict_time(db, v["key"], seed, trials) for v in verdicts.values()]
+        out["comparison"] = stored_comparison(
+            {OPTIMUM: (store.design_of_key(optimum["key"]), optimum["trial_data"])},
+            (label, base_values, verdicts[label]["trial_data"]),
+            seed,
+            config.final_target,
+            None if None in times else sum(t for t in times if t is not None),
+        )
+    out["margins"], out["margins_absent"] = _margins(db, config, out.get(OPTIMUM))
     return out
+
+
+def _margins(
+    db, config: OptimizeConfig, optimum: dict[str, Any] | None
+) -> tuple[dict[str, Any] | None, str | None]:
+    """The optimum's stored margins, or None and why there are none."""
+    if optimum is None:
+        return None, "there is no optimum yet"
+    verdict = optimum.get("verdict") or {}
+    if not verdict.get("works"):
+        return None, (
+            f"the optimum does not work on its {verdict.get('drops', '?')} fresh trials "
+            f"(decision: {verdict.get('decision', 'none')}), so it has no margins"
+        )
+    key = store.design_key([optimum["values"][n] for n in PARAMETER_NAMES])
+    stored = store.stored_margins(db, key, settings_key(config))
+    if stored is None:
+        return None, "they were not measured (the run was stopped before, or told not to)"
+    return stored, None
 
 
 def _candidates(db, config: OptimizeConfig, values, optimum: dict | None) -> list[dict]:
@@ -372,7 +474,7 @@ def _candidates(db, config: OptimizeConfig, values, optimum: dict | None) -> lis
         stored = store.stored_verdict(db, candidate_label(rank))
         if stored is None:
             break
-        verdict = _verdict(stored["trial_data"], config.final_target)
+        verdict = verdict_of_trials(stored["trial_data"], config.final_target)
         e = values[stored["key"]]
         design = store.design_of_key(stored["key"])
         rows.append(

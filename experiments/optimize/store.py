@@ -12,7 +12,12 @@ Tables (one row per ...):
   ``differential-evolution/seed0``), pointing at its design's evaluation. A design asked again
   (by this run or another) is not evaluated again: the value is a function of the design.
 - ``verdicts``: a design's fixed-sample verdict on fresh draws (``label``: ``optimum``,
-  ``table3``, ...): its seed and trials as JSON.
+  ``table3``, the baseline's label, ``candidate0``, ...): its seed and trials as JSON.
+- ``verdict_times`` (added later): the wall time (s) of a verdict, by design key, seed and
+  number of trials (what a report states as the comparison's cost).
+- ``margins`` (added later): the tolerance margins of a design
+  (:meth:`experiments.margins.run.MarginsReport.to_dict`), by design key and the digest of
+  the margins' settings (draws, target, seed, the scene's options).
 
 An evaluation is stored in one transaction as it finishes: a run killed at any moment loses
 at most the evaluations in flight, and one restarted repeats none that were stored.
@@ -56,7 +61,22 @@ CREATE TABLE IF NOT EXISTS verdicts (
     seed INTEGER NOT NULL,
     trial_data TEXT NOT NULL
 );
+CREATE TABLE IF NOT EXISTS verdict_times (
+    key TEXT NOT NULL,
+    seed INTEGER NOT NULL,
+    trials INTEGER NOT NULL,
+    wall_time_s REAL NOT NULL,
+    PRIMARY KEY (key, seed, trials)
+);
+CREATE TABLE IF NOT EXISTS margins (
+    key TEXT NOT NULL,
+    settings TEXT NOT NULL,
+    report TEXT NOT NULL,
+    PRIMARY KEY (key, settings)
+);
 """
+# tables an older database lacks: created when it is opened for writing, absent read-only
+ADDED_LATER = ("verdict_times", "margins")
 
 
 class StoreMismatch(ValueError):
@@ -112,16 +132,28 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
             "SELECT trial_data FROM evaluations UNION ALL SELECT trial_data FROM verdicts"
         ):
             json.loads(data)
+        if "margins" in _tables(db):
+            for (data,) in db.execute("SELECT report FROM margins"):
+                json.loads(data)
     except (ValueError, sqlite3.OperationalError) as exc:
         return f"trial data cannot be read ({type(exc).__name__})"
     return None
+
+
+def _tables(db: sqlite3.Connection) -> set[str]:
+    return {r[0] for r in db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
 
 
 def check_store(path: str | Path) -> bool:
     """Refuse (:class:`StoreDamaged`) a file that is not a sound optimisation database
     (:func:`experiments.database_file.check_file`). Returns whether it holds our tables."""
     return check_file(
-        path, _SCHEMA, _damaged, "optimisation database", content_problem=_content_problem
+        path,
+        _SCHEMA,
+        _damaged,
+        "optimisation database",
+        added_later=ADDED_LATER,
+        content_problem=_content_problem,
     )
 
 
@@ -234,3 +266,58 @@ def stored_verdict(db: sqlite3.Connection, label: str) -> dict[str, Any] | None:
     if row is None:
         return None
     return {"key": row["key"], "seed": row["seed"], "trial_data": json.loads(row["trial_data"])}
+
+
+def find_verdict(db: sqlite3.Connection, key: str, seed: int, trials: int) -> dict[str, Any] | None:
+    """A stored verdict of design ``key`` on ``trials`` trials of ``seed``, under any label
+    (its trials are a function of the design and the draws): ``label``, ``key``, ``seed``,
+    ``trial_data``; None if none."""
+    for row in db.execute(
+        "SELECT * FROM verdicts WHERE key = ? AND seed = ? ORDER BY label", (key, seed)
+    ):
+        data = json.loads(row["trial_data"])
+        if len(data) == trials:
+            return {"label": row["label"], "key": key, "seed": seed, "trial_data": data}
+    return None
+
+
+def record_verdict_time(
+    db: sqlite3.Connection, key: str, seed: int, trials: int, wall_time_s: float
+) -> None:
+    """Store the wall time (s) the verdict of ``key`` on ``trials`` trials of ``seed`` took."""
+    with db:
+        db.execute(
+            "INSERT OR REPLACE INTO verdict_times VALUES (?, ?, ?, ?)",
+            (key, seed, trials, float(wall_time_s)),
+        )
+
+
+def verdict_time(db: sqlite3.Connection, key: str, seed: int, trials: int) -> float | None:
+    """The stored wall time (s) of that verdict; None when not recorded (an older run)."""
+    try:
+        row = db.execute(
+            "SELECT wall_time_s FROM verdict_times WHERE key = ? AND seed = ? AND trials = ?",
+            (key, seed, trials),
+        ).fetchone()
+    except sqlite3.OperationalError:  # an older database, opened read-only
+        return None
+    return None if row is None else float(row["wall_time_s"])
+
+
+def record_margins(db: sqlite3.Connection, key: str, settings: str, report: dict[str, Any]) -> None:
+    """Store the margins ``report`` of design ``key`` measured with ``settings`` (a digest)."""
+    with db:
+        db.execute(
+            "INSERT OR REPLACE INTO margins VALUES (?, ?, ?)", (key, settings, json.dumps(report))
+        )
+
+
+def stored_margins(db: sqlite3.Connection, key: str, settings: str) -> dict[str, Any] | None:
+    """The stored margins of design ``key`` with ``settings``; None if not measured."""
+    try:
+        row = db.execute(
+            "SELECT report FROM margins WHERE key = ? AND settings = ?", (key, settings)
+        ).fetchone()
+    except sqlite3.OperationalError:  # an older database, opened read-only
+        return None
+    return None if row is None else json.loads(row["report"])

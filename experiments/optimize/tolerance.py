@@ -1,0 +1,90 @@
+"""The tolerance margins of the optimum (:mod:`experiments.margins`), measured once the
+optimisation is done and stored with it.
+
+The margins use the optimisation's scene (part, friction, restitution: the config's
+``feeder``), its drop settings (``objective.step``, ``objective.t_max``), its perturbations,
+the target of its final verdicts (``final.target``), ``MARGIN_DROPS`` trials per value and
+their own seed, ``final.seed + MARGIN_SEED_OFFSET`` (neither the validation's draws, seed
+``final.seed``, nor the reported verdicts', ``final.seed + 1``). They are stored in the
+optimisation's database under the design and a digest of those settings, so a run started
+again in the same directory measures nothing again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import sqlite3
+from collections.abc import Callable
+from typing import Any
+
+from experiments.optimize import store
+from experiments.optimize.config import OptimizeConfig
+
+MARGIN_DROPS = 20  # trials per value tried (the margins command's default)
+MARGIN_SEED_OFFSET = 2  # the margins' draws: seed final.seed + 2
+AXES = 16  # the 12 design parameters, friction, the part's length, width and mass split
+
+AxisCallback = Callable[[Any], object]
+
+
+def margin_settings(config: OptimizeConfig) -> Any:
+    """The :class:`experiments.margins.measure.MarginSettings` of ``config``'s optimum."""
+    from experiments.drop.perturbations import Perturbations
+    from experiments.margins.measure import MarginSettings
+
+    return MarginSettings(
+        drops=MARGIN_DROPS,
+        target=config.final_target,
+        seed=config.final_seed + MARGIN_SEED_OFFSET,
+        step=config.step,
+        t_max=config.t_max,
+        perturbations=Perturbations(**config.perturbations),
+    )
+
+
+def settings_key(config: OptimizeConfig) -> str:
+    """A digest of what decides the margins of a design: the settings and the scene."""
+    settings = dataclasses.asdict(margin_settings(config))
+    text = json.dumps({"settings": settings, "feeder": config.feeder}, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def optimum_margins(
+    db: sqlite3.Connection,
+    config: OptimizeConfig,
+    key: str,
+    label: str = "optimum",
+    workers: int = 1,
+    on_axis: AxisCallback | None = None,
+    measure: Callable[..., Any] | None = None,
+) -> dict[str, Any]:
+    """The margins of design ``key`` (:meth:`experiments.margins.run.MarginsReport.to_dict`,
+    named ``label``): stored ones when measured before with the same settings, else measured
+    on ``workers`` processes (``on_axis`` called as each axis finishes) and stored.
+    ``measure`` replaces :func:`experiments.margins.run.margins_of` (tests count calls)."""
+    digest = settings_key(config)
+    stored = store.stored_margins(db, key, digest)
+    if stored is not None:
+        return stored
+    from experiments.margins.measure import Subject
+    from experiments.margins.run import margins_of
+    from feeders.design import DesignParameters
+    from feeders.feeder import build_feeder
+    from feeders.scene_yaml import environment_from_dict
+
+    run = measure or margins_of
+    environment = environment_from_dict(config.feeder)
+    part, friction = environment.pop("part"), environment.pop("friction")
+    scene = build_feeder(
+        DesignParameters.from_vector(store.design_of_key(key)),
+        part,
+        friction=friction,
+        name=label,
+        **environment,
+    )
+    report = run(Subject.of_scene(scene), margin_settings(config), workers, on_axis=on_axis)
+    data = report.to_dict()
+    store.record_margins(db, key, digest, data)
+    return data
