@@ -67,3 +67,17 @@ def test_a_run_that_stops_before_its_budget_moves_the_bar_to_it():
     bars("run end", {"run": "nelder-mead/seed0", "unspent": 3})
     assert (bars.bar.n, bars.bar.total) == (5, 5)
     bars.close()
+
+
+def test_the_margins_bar_counts_the_sixteen_axes():
+    bars = OptimizeProgress(quiet=False, stream=io.StringIO())
+    bars("verdicts", {"verdicts": 6, "trials": 150})
+    bars("margins", {"axes": 16})
+    assert (bars.bar.n, bars.bar.total) == (0, 16)
+    for name in ["a", "b", "c", "d", "e", "fx", "fy", "gx", "gy", "r", "theta", "alpha"]:
+        bars("axis", {"axis": name})
+    for name in ["mu", "length", "width", "heavy_fraction"]:
+        bars("axis", {"axis": name})
+    assert (bars.bar.n, bars.bar.total) == (16, 16)
+    assert "margins of the optimum" in bars.stream.getvalue()
+    bars.close()
