@@ -8,14 +8,24 @@ import json
 import os
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
+from experiments.cli.baseline import DEFAULT_BASELINE, add_baseline_argument, baseline_of
 from experiments.cli.usage import UsageError
+
+MARGINS_AXES = 16  # the margins' axes (experiments.margins.axes): 12 parameters, mu, the part
 
 
 def add_arguments(report: argparse.ArgumentParser) -> None:
     report.add_argument("dir", type=Path, help="a sweep directory (holds results.sqlite)")
     report.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_baseline_argument(report)
+    report.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="worker processes for the recommended design's margins (default: the sweep's)",
+    )
 
 
 # what ``finish`` writes in a sweep directory, beside the figures in ``figures/``
@@ -30,6 +40,11 @@ WRITTEN = (
 
 
 def run(args: argparse.Namespace) -> int:
+    baseline_of(args.baseline)  # a bad --baseline is one line before any work
+    if args.workers is not None:
+        from experiments.cli.usage import check_count
+
+        check_count(args.workers, "--workers", 1024)
     if not (args.dir / "results.sqlite").exists():
         raise UsageError(f"{args.dir}: no results.sqlite here (is it a sweep directory?)")
     unwritable = not_writable(args.dir)
@@ -61,6 +76,41 @@ def not_writable(out: Path) -> Path | None:
     return None
 
 
+class MarginsProgress:
+    """A bar over the recommended design's margins, one axis at a time, with a fixed total
+    (the axes, :data:`MARGINS_AXES`) and tqdm's time estimate: the margins are most of a
+    report's time (about 30 s on 2 workers), which was a silent wait. The report's
+    ``progress`` (:mod:`experiments.sweep.report_recommendation`); ``stream`` None draws on
+    stderr when it is a terminal (tests give a ``StringIO``)."""
+
+    def __init__(self, quiet: bool, stream: TextIO | None = None):
+        self.quiet = quiet
+        self.stream = stream
+        self.bar: Any = None
+
+    def __call__(self, event: str, info: dict[str, Any]) -> None:
+        if self.quiet:
+            return
+        if event == "margins":
+            from experiments.progress import bar
+
+            self.close()
+            self.bar = bar(
+                int(info.get("axes", MARGINS_AXES)),
+                f"margins of {info.get('design', 'the design')}",
+                "axis",
+                stream=self.stream,
+            )
+        elif event == "axis" and self.bar is not None:
+            self.bar.set_postfix_str(str(info.get("parameter", "")), refresh=False)
+            self.bar.update(1)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+
+
 def finish(
     out: Path,
     args: argparse.Namespace,
@@ -70,15 +120,21 @@ def finish(
     """Summarise the sweep in ``out``, write its report (unless ``--no-report``) and
     ``summary.json``, and print the summary (a table, or JSON with ``--json``); ``export``
     (``run``: OMPL's database from the stored logs) is called first, unless the results have
-    not changed since it last was and ``ompl/benchmark.db`` is there.
+    not changed since it last was and ``ompl/benchmark.db`` is there. The summary holds what
+    the report found (:data:`experiments.sweep.report.FINDINGS`: the comparison with
+    ``--baseline`` on fresh draws, the recommendation, the recommended design's margins,
+    computed on ``--workers`` processes, default the sweep's).
 
-    A report is drawn again only when what it shows may have changed: the summary and the
-    report's state are kept in ``report-cache.json`` under a key of the results database's
-    rows and of the code that draws it (:func:`report_key`); with the key unchanged and the
-    report's files as they were written, the stored summary is printed and nothing is
-    redrawn (a finished sweep's ``report`` took 5.0 s on 64 designs, up to 68 s in the
-    issue, all of it figures and nominal drops drawn again)."""
-    from experiments.progress import phase, say
+    A report is drawn again only when what it shows may have changed: the summary, what the
+    report found and the report's state are kept in ``report-cache.json`` under a key of the
+    results database's rows, of the code that draws it and of the baseline
+    (:func:`report_key`, :func:`with_baseline`); with the key unchanged and the report's
+    files as they were written, the stored summary is printed and nothing is redrawn (a
+    finished sweep's ``report`` took 5.0 s on 64 designs, up to 68 s in the issue, all of it
+    figures and nominal drops drawn again)."""
+    import time
+
+    from experiments.progress import say
     from experiments.sweep import results_db
     from experiments.sweep.report_cache import (
         OMPL_DATABASE,
@@ -87,23 +143,26 @@ def finish(
         report_key,
         report_state,
         save_cache,
+        with_baseline,
     )
     from experiments.sweep.summary import summary_table
 
     quiet = bool(getattr(args, "quiet", False))
+    baseline = baseline_of(getattr(args, "baseline", DEFAULT_BASELINE))
     results = out / "results.sqlite"
     results_db.check_database(results)  # refused as the summary would refuse it
-    key = report_key(results)  # before the summary: a key never newer than what it keys
+    rows = report_key(results)  # before the summary: a key never newer than what it keys
+    key = with_baseline(rows, baseline)
     cache = load_cache(out, key)
     if cache is None:
         from experiments.sweep.summary import summarise
 
         cache = {"key": key, "summary": summarise(results), "report": None}
     if export is not None:
-        if key is None or cache.get("ompl") != key or not (out / OMPL_DATABASE).exists():
+        if rows is None or cache.get("ompl") != rows or not (out / OMPL_DATABASE).exists():
             export()
-        cache["ompl"] = key
-    summary = {**cache["summary"], **extra}
+        cache["ompl"] = rows
+    summary = {**cache["summary"], **(cache.get("findings") or {}), **extra}
     files = {"results": str(results)}
     if (out / OMPL_DATABASE).exists():
         files["ompl_database"] = str(out / OMPL_DATABASE)
@@ -112,11 +171,30 @@ def finish(
         if report_intact(out, cache["report"]):
             say(f"{page} is up to date (the results have not changed)", quiet)
         else:
-            from experiments.sweep.report import write_report
+            from experiments.sweep.report import report_with_findings
 
-            with phase("writing the report", quiet):
-                page = write_report(out, summary, results)
+            say(
+                "writing the report (figures, the top designs judged again on fresh draws, "
+                "the recommended design's margins) ...",
+                quiet,
+            )
+            t0 = time.perf_counter()
+            bars = MarginsProgress(quiet)
+            try:
+                page, findings = report_with_findings(
+                    out,
+                    {**cache["summary"], **extra},
+                    results,
+                    baseline=baseline,
+                    workers=getattr(args, "workers", None),
+                    progress=bars,
+                )
+            finally:
+                bars.close()
+            say(f"report written in {time.perf_counter() - t0:.1f} s", quiet)
+            cache["findings"] = findings
             cache["report"] = report_state(out)
+            summary = {**cache["summary"], **findings, **extra}
         files["report"] = str(page)
     if key is not None:
         save_cache(out, cache)
@@ -126,8 +204,20 @@ def finish(
         print(json.dumps(summary, indent=2))
     else:
         print(summary_table(summary))
+        recommended = recommendation_line(summary.get("recommendation"))
+        if recommended is not None:
+            print(recommended)
         if "wall_time_s" in summary:
             print(f"wall time: {summary['wall_time_s']:.1f} s")
         for name, path in files.items():
             print(f"{name}: {path}")
     return 0
+
+
+def recommendation_line(recommendation: dict[str, Any] | None) -> str | None:
+    """The recommendation in one line of the printed summary (None without one)."""
+    if not recommendation:
+        return None
+    if recommendation.get("confirmed"):
+        return f"recommended: {recommendation['label']}, {recommendation['sentence']}"
+    return f"recommended: none, {recommendation.get('sentence')}"

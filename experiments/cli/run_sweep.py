@@ -10,6 +10,7 @@ import time
 from pathlib import Path
 from typing import Any, TextIO
 
+from experiments.cli.baseline import add_baseline_argument, baseline_of
 from experiments.cli.kernels import compile_once
 from experiments.cli.report import finish
 from experiments.cli.usage import UsageError, out_dir
@@ -36,6 +37,7 @@ def add_arguments(run: argparse.ArgumentParser) -> None:
     run.add_argument("--workers", type=int, default=None, help="local worker processes")
     run.add_argument("--designs", type=int, default=None, help="override designs.count")
     run.add_argument("--no-report", action="store_true", help="skip the HTML report")
+    add_baseline_argument(run)
     run.add_argument("--json", action="store_true", help="print the summary as JSON")
     run.add_argument("--quiet", action="store_true", help="no progress bars")
 
@@ -120,6 +122,7 @@ def run(args: argparse.Namespace) -> int:
     executor the kernels are compiled here once, before the workers start, which then only
     load them (on a cold cache each worker compiled them itself)."""
     _executor_flags(args)
+    baseline_of(args.baseline)
     from experiments.sweep.config import ConfigError, config_from_dict, load_config
 
     try:

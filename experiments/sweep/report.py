@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from experiments.report_kit.comparison_section import OVERLAY_PREFIX, comparison_figures
+from experiments.report_kit.margins_section import MARGINS, margins_figures
 from experiments.report_kit.verdict_section import STRIP_PREFIX
 from experiments.sweep.report_figures import (
     best_figure,
@@ -32,28 +33,66 @@ from experiments.sweep.report_figures import (
     survivors_figure,
 )
 from experiments.sweep.report_html import html_page
+from experiments.sweep.report_recommendation import (
+    Progress,
+    margins_of_recommended,
+    recommendation_of,
+)
 from experiments.sweep.report_verdicts import TRANSITIONS, comparison_of, verdict_figures
 from experiments.sweep.results_db import connect
 from feeders.design import PARAMETER_NAMES
 
 FIGURES = ("survivors", "feasible_set", "planners", "pruning", "best_designs")
+# what a report finds beyond the sweep's summary, for the summary a job prints
+FINDINGS = ("comparison", "recommendation", "margins")
 
 
-def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Path:
-    """Write out_dir/report.html and out_dir/figures/*.png; returns the HTML path.
+def write_report(
+    out_dir: str | Path,
+    summary: dict,
+    db_path: str | Path,
+    baseline: tuple[str, list[float]] | None = None,
+    workers: int | None = None,
+    margins: bool = True,
+    progress: Progress | None = None,
+) -> Path:
+    """Write out_dir/report.html and out_dir/figures/*.png; returns the HTML path
+    (:func:`report_with_findings`, without what it found)."""
+    page, _ = report_with_findings(out_dir, summary, db_path, baseline, workers, margins, progress)
+    return page
+
+
+def report_with_findings(
+    out_dir: str | Path,
+    summary: dict,
+    db_path: str | Path,
+    baseline: tuple[str, list[float]] | None = None,
+    workers: int | None = None,
+    margins: bool = True,
+    progress: Progress | None = None,
+) -> tuple[Path, dict[str, Any]]:
+    """Write out_dir/report.html and out_dir/figures/*.png; returns the HTML path and what
+    the report found beyond ``summary`` (:data:`FINDINGS`: ``comparison``,
+    ``recommendation``, ``margins``), for the summary a job prints.
 
     ``summary`` holds the sweep's statistics (keys ``name``, ``results_key``, ``designs``,
     ``holdout``, ``ladder``, ``feeder``, ``levels``, ``planners``, ``pruning``, ``speedup``,
     ``best``, ``quarantined``, and with a passive rung ``truth``, ``passive``, ``pipelines``);
     the best designs with a verdict get the strips of their nominal drops
     (:mod:`experiments.sweep.report_verdicts`) and, the top ``COMPARED`` of them, the "Why
-    this design" section: judged again beside table3 on the same fresh draws, drawn over it
-    (:func:`experiments.sweep.report_verdicts.comparison_of`, 80 drops per design and 80
-    for table3); the database at ``db_path`` gives the per-design verdicts and the per-run
-    planner numbers the figures need. Figures of an earlier report that this one does not
-    draw (no best designs yet) are removed, so the page and the directory agree. The HTML is
-    written to a temporary file and renamed, so a browser refreshing the page while a
-    sweep reports never sees half of it.
+    this design" section: judged again beside ``baseline`` (``(label, 12 values)``, default
+    table3) on the same fresh draws, drawn over it
+    (:func:`experiments.sweep.report_verdicts.comparison_of`, 40 trials of both entries per
+    design and for the baseline). The page opens with the recommendation
+    (:func:`experiments.sweep.report_recommendation.recommendation_of`: the first of those
+    ranked on the fresh draws, only when they confirm it works), whose tolerance margins
+    (:func:`experiments.sweep.report_recommendation.margins_of_recommended`, about 30 s on 2
+    workers) are computed on ``workers`` processes (default the sweep's) unless ``margins``
+    is False, with ``progress`` told as each axis is done. The database at ``db_path`` gives
+    the per-design verdicts and the per-run planner numbers the figures need. Figures of an
+    earlier report that this one does not draw (no best designs yet) are removed, so the
+    page and the directory agree. The HTML is written to a temporary file and renamed, so a
+    browser refreshing the page while a sweep reports never sees half of it.
     """
     out_dir = Path(out_dir)
     figures_dir = out_dir / "figures"
@@ -74,9 +113,16 @@ def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Pat
     figures.update(verdict_figures(summary, figures_dir))
     comparison: dict[str, Any] | None = None
     if summary.get("passive"):
-        comparison = comparison_of(summary, Path(db_path))
+        comparison = comparison_of(summary, Path(db_path), baseline=baseline)
         if "absent" not in comparison:
             figures.update(comparison_figures(comparison, figures_dir, **_environment(summary)))
+    recommendation = recommendation_of(summary, comparison)
+    margins_data: dict[str, Any] | None = None
+    if margins and recommendation["confirmed"] and comparison is not None:
+        margins_data = margins_of_recommended(
+            summary, Path(db_path), comparison, recommendation["label"], workers, progress
+        )
+        figures.update(margins_figures(margins_data, figures_dir))
     for name in FIGURES:
         stale = figures_dir / f"{name}.png"
         if name not in figures and stale.exists():
@@ -85,16 +131,22 @@ def write_report(out_dir: str | Path, summary: dict, db_path: str | Path) -> Pat
         *figures_dir.glob(f"{STRIP_PREFIX}*.png"),
         *figures_dir.glob(f"{OVERLAY_PREFIX}*.png"),
         figures_dir / f"{TRANSITIONS}.png",
+        figures_dir / f"{MARGINS}.png",
     ]:
         if stale.stem not in figures and stale.exists():
             stale.unlink()
 
+    findings = {
+        "comparison": comparison,
+        "recommendation": recommendation,
+        "margins": margins_data,
+    }
     page = out_dir / "report.html"
     partial = out_dir / "report.html.partial"
-    shown = summary if comparison is None else {**summary, "comparison": comparison}
+    shown = {**summary, **findings}
     partial.write_text(html_page(shown, ladder, figures, Path(db_path)), encoding="utf-8")
     os.replace(partial, page)
-    return page
+    return page, findings
 
 
 def _environment(summary: dict) -> dict[str, Any]:

@@ -49,9 +49,21 @@ def report_key(results: Path) -> str | None:
     return digest.hexdigest()
 
 
+def with_baseline(key: str | None, baseline: tuple[str, list[float]]) -> str | None:
+    """``key`` (:func:`report_key`) made the key of a report that compares with ``baseline``
+    (``(label, 12 values)``): another baseline is another report; None stays None."""
+    import hashlib
+
+    if key is None:
+        return None
+    label, values = baseline
+    text = json.dumps([key, str(label), [float(v) for v in values]])
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
 CACHE = "report-cache.json"
 OMPL_DATABASE = Path("ompl") / "benchmark.db"
-CACHE_FORMAT = "partfeeder report cache 1"
+CACHE_FORMAT = "partfeeder report cache 2"  # 2: the findings and the baseline
 
 
 def load_cache(out: Path, key: str | None) -> dict[str, Any] | None:

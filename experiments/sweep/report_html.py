@@ -10,8 +10,11 @@ import time
 from pathlib import Path
 
 from experiments.report_kit.cells import DASH, cell, interval, number
+from experiments.report_kit.margins_section import margins_html
 from experiments.report_kit.page import STYLE, figure_html, html_table
+from experiments.report_kit.recommendation import recommendation_html
 from experiments.sweep.report_figures import MAX_BEST_DRAWN
+from experiments.sweep.report_recommendation import NOT_REJUDGED, design_label, fresh_status
 from experiments.sweep.report_verdicts import verdict_html
 from feeders.design import PARAMETER_NAMES
 
@@ -49,6 +52,37 @@ def _pruning_table(rows: list[dict]) -> str:
     )
 
 
+def _recommendation_box(summary: dict) -> str:
+    """The box the page opens with: the design to build, or why there is none."""
+    recommendation = summary.get("recommendation")
+    if not recommendation:
+        return ""
+    comparison = summary.get("comparison")
+    return recommendation_html(
+        recommendation.get("label"),
+        None if not comparison or "absent" in comparison else comparison,
+        summary.get("margins"),
+        str(recommendation.get("chosen") or ""),
+        absent=str(recommendation.get("sentence") or ""),
+    )
+
+
+def _margins_parts(summary: dict, figures: dict[str, Path]) -> list[str]:
+    """The recommended design's margins, or why there are none (nothing without a passive
+    rung: no design has a verdict)."""
+    recommendation = summary.get("recommendation")
+    if not summary.get("passive") or not recommendation:
+        return []
+    if summary.get("margins") is None:
+        why = (
+            "not measured in this report"
+            if recommendation.get("confirmed")
+            else "no design is recommended, so none has its margins measured"
+        )
+        return margins_html(None, figures, absent=why)
+    return margins_html(summary["margins"], figures)
+
+
 def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_path: Path) -> str:
     """The page: summary numbers as tables, each section followed by its figure."""
     e = html.escape
@@ -70,6 +104,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         f"{e(' → '.join(ladder) or DASH)}.<br>"
         f"Database <code>{e(db_path.name)}</code>; report written {e(time.ctime())}."
         "</p>",
+        _recommendation_box(summary),
     ]
 
     parts.append("<h2>Levels</h2>")
@@ -115,6 +150,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     parts.append(figure_html(figures, "survivors", "survivors per level"))
 
     parts += verdict_html(summary, figures)
+    parts += _margins_parts(summary, figures)
 
     parts.append("<h2>Speed-up of the ladder</h2>")
     parts.append(f"<p>{e(_speedup_text(summary.get('speedup')))}</p>")
@@ -180,29 +216,45 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         figure_html(figures, "feasible_set", "feasible set: the designs in parallel coordinates")
     )
 
-    parts.append("<h2>Best designs</h2>")
+    parts.append("<h2>Top designs by the sweep's own verdict</h2>")
     best = list(summary.get("best") or [])
+    status = fresh_status(summary.get("comparison"))
     if best:
         parts.append(
+            '<p class="note">Ranked on the draws they were selected on (the top of a scan can be '
+            "a lucky draw). Fresh draws: what judging the top ones again on fresh draws "
+            "beside the baseline said (Why this design); only a confirmed design is "
+            "recommended.</p>"
+        )
+        parts.append(
             html_table(
-                ["design", "P(both)", "95% CI", "exit time (s)", *PARAMETER_NAMES],
+                [
+                    "design",
+                    "P(both)",
+                    "95% CI",
+                    "exit time (s)",
+                    "fresh draws",
+                    *PARAMETER_NAMES,
+                ],
                 [
                     [
                         cell(row.get("design_id")),
                         cell(((row.get("verdict") or {}).get("both") or {}).get("p"), ".3f"),
                         interval(((row.get("verdict") or {}).get("both") or {}).get("interval")),
                         cell(row.get("exit_time_s"), ".3f"),
+                        status.get(design_label(row.get("design_id")), NOT_REJUDGED),
                         *(cell(v, ".4g") for v in (row.get("values") or [])),
                     ]
                     for row in best
                 ],
+                text_columns=(4,),
             )
         )
         if len(best) > MAX_BEST_DRAWN:
             parts.append(f'<p class="note">The first {MAX_BEST_DRAWN} are drawn.</p>')
     else:
         parts.append("<p>No design has an exit time yet.</p>")
-    parts.append(figure_html(figures, "best_designs", "drawings of the best designs"))
+    parts.append(figure_html(figures, "best_designs", "drawings of the top designs"))
 
     parts.append("<h2>Quarantined</h2>")
     quarantined = list(summary.get("quarantined") or [])

@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from matplotlib.figure import Figure
 
+from experiments.drop.verdict_settings import VerdictSettings
 from experiments.pictures.scenes import save_figure
 from experiments.report_kit.cells import DASH, cell, interval
 from experiments.report_kit.comparison_section import comparison_html
@@ -254,42 +255,77 @@ def _comparison_parts(summary: dict, figures: dict[str, Path]) -> list[str]:
     if not comparison:
         return []
     if "absent" in comparison:
+        name = str((comparison.get("baseline") or {}).get("label") or BASELINE)
         return [
-            "<h2>Why this design</h2>",
-            f"<p>No comparison with {html.escape(BASELINE)} on fresh draws: "
+            '<h2 id="why">Why this design</h2>',
+            f"<p>No comparison with {html.escape(name)} on fresh draws: "
             f"{html.escape(str(comparison['absent']))}.</p>",
         ]
     return comparison_html(comparison, figures)
 
 
-def comparison_of(summary: dict, db_path: Path, drops: int | None = None) -> dict[str, Any]:
-    """The best designs that work (at most ``COMPARED``) judged again beside the baseline
-    (the paper's table3) on the same fresh draws
-    (:func:`experiments.drop.compare.compare_designs`, ``drops`` trials each, default
-    ``FRESH_DROPS``) with the sweep's passive settings, part and feeder, on a seed that is no
-    design's verdict seed; ``{"absent": reason}`` when there is nothing to compare."""
-    from experiments.drop.compare import FRESH_DROPS, compare_designs, fresh_seed
-    from experiments.drop.perturbations import Perturbations
-    from experiments.drop.verdict_settings import VerdictSettings
-    from experiments.names import PASSIVE
-    from experiments.sweep.job import verdict_seed
+def sweep_config(db_path: Path) -> dict[str, Any]:
+    """The sweep's config as its results database keeps it (``{}`` when it holds none)."""
     from experiments.sweep.results_db import connect
-    from feeders.design import DesignParameters, preset
-    from feeders.scene_yaml import environment_from_dict
 
-    best = with_verdicts(summary)[:COMPARED]
-    if not best:
-        return {"absent": "no design works, so none is recommended"}
     with closing(connect(db_path, readonly=True)) as db:
         row = db.execute("SELECT value FROM meta WHERE key = 'config'").fetchone()
-    config = json.loads(row["value"]) if row is not None else {}
+    return json.loads(row["value"]) if row is not None else {}
+
+
+def passive_settings(config: dict[str, Any]) -> VerdictSettings | None:
+    """The verdict settings of the sweep's passive rung (target, trials, step, perturbations),
+    None without one."""
+    from experiments.drop.perturbations import Perturbations
+    from experiments.names import PASSIVE
+
     rungs = [r for r in config.get("ladder") or [] if r.get("level") == PASSIVE]
     if not rungs:
-        return {"absent": "the results database holds no sweep config with a passive rung"}
-    settings = VerdictSettings(
+        return None
+    return VerdictSettings(
         **(rungs[0].get("verdict") or {}),
         perturbations=Perturbations(**(rungs[0].get("perturbations") or {})),
     )
+
+
+def default_baseline() -> tuple[str, list[float]]:
+    """``(BASELINE, its 12 values)``: the paper's table3."""
+    from feeders.design import preset
+
+    return BASELINE, [float(v) for v in preset(BASELINE).to_vector()]
+
+
+def comparison_of(
+    summary: dict,
+    db_path: Path,
+    drops: int | None = None,
+    baseline: tuple[str, list[float]] | None = None,
+) -> dict[str, Any]:
+    """The best designs that work by the sweep's own verdict (at most ``COMPARED``) judged
+    again beside ``baseline`` (``(label, 12 values)``, default the paper's table3) on the
+    same fresh draws (:func:`experiments.drop.compare.compare_designs`, ``drops`` trials
+    each, default ``FRESH_DROPS``) with the sweep's passive settings, part and feeder, on a
+    seed that is no design's verdict seed; the designs in the order of
+    :func:`experiments.report_kit.comparison_section.fresh_ranking` (confirmed first), not
+    the order they were selected in. ``{"absent": reason, "baseline": {"label": ...}}``
+    when there is nothing to compare."""
+    from experiments.drop.compare import FRESH_DROPS, compare_designs, fresh_seed
+    from experiments.report_kit.comparison_section import fresh_ranking
+    from experiments.sweep.job import verdict_seed
+    from feeders.design import DesignParameters
+    from feeders.scene_yaml import environment_from_dict
+
+    name, base_values = baseline or default_baseline()
+    best = with_verdicts(summary)[:COMPARED]
+    if not best:
+        return {"absent": "no design works, so none is recommended", "baseline": {"label": name}}
+    config = sweep_config(db_path)
+    settings = passive_settings(config)
+    if settings is None:
+        return {
+            "absent": "the results database holds no sweep config with a passive rung",
+            "baseline": {"label": name},
+        }
     sweep_seed = int((config.get("designs") or {}).get("seed", 0))
     ranked_with = [verdict_seed(sweep_seed, int(b["design_id"])) for b in best]
     environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
@@ -299,10 +335,13 @@ def comparison_of(summary: dict, db_path: Path, drops: int | None = None) -> dic
             for b in best
         }
     except ValueError as exc:
-        return {"absent": f"a best design's values are not a design ({exc})"}
+        return {
+            "absent": f"a best design's values are not a design ({exc})",
+            "baseline": {"label": name},
+        }
     comparison = compare_designs(
         designs,
-        (BASELINE, preset(BASELINE)),
+        (name, DesignParameters.from_vector(list(base_values))),
         settings,
         fresh_seed(sweep_seed, ranked_with),
         drops or FRESH_DROPS,
@@ -311,4 +350,6 @@ def comparison_of(summary: dict, db_path: Path, drops: int | None = None) -> dic
         **environment,
     )
     comparison["ranked_with"] = ranked_with
+    order = [r["label"] for r in fresh_ranking(comparison)]
+    comparison["designs"].sort(key=lambda d: order.index(str(d["label"])))
     return comparison

@@ -14,6 +14,7 @@ from cli_process import noise, run_cli
 from sweep_fixtures import TINY, fake_result
 
 from experiments.cli import report as report_cli
+from experiments.cli.baseline import baseline_of
 from experiments.sweep import report_cache, results_db
 from experiments.sweep.config import config_from_dict
 from feeders.halton import halton_points
@@ -44,24 +45,30 @@ def finished_sweep(directory: Path) -> Path:
 
 @pytest.fixture
 def drawn(monkeypatch) -> list[Path]:
-    """The sweep directories ``write_report`` was called for; it writes a page and a figure
-    (the real one's figures cost seconds and are specified elsewhere)."""
+    """The sweep directories the report was drawn for; it writes a page and a figure and
+    finds a recommendation naming the baseline it was given (the real one's figures,
+    comparison and margins cost seconds and are specified elsewhere)."""
     calls: list[Path] = []
 
-    def write_report(out, summary, db_path):
+    def report_with_findings(out, summary, db_path, baseline=None, **_options):
         calls.append(Path(out))
         (Path(out) / "figures").mkdir(exist_ok=True)
         (Path(out) / "figures" / "survivors.png").write_bytes(b"png")
         page = Path(out) / "report.html"
         page.write_text(f"<p>{summary['levels'][0]['evaluated']} evaluated</p>")
-        return page
+        findings = {
+            "comparison": {"absent": "no design works", "baseline": {"label": baseline[0]}},
+            "recommendation": {"label": None, "confirmed": False, "sentence": "none works"},
+            "margins": None,
+        }
+        return page, findings
 
-    monkeypatch.setattr("experiments.sweep.report.write_report", write_report)
+    monkeypatch.setattr("experiments.sweep.report.report_with_findings", report_with_findings)
     return calls
 
 
-def _report(sweep: Path, capsys) -> dict:
-    args = argparse.Namespace(json=True, no_report=False, quiet=True)
+def _report(sweep: Path, capsys, baseline: str = "table3") -> dict:
+    args = argparse.Namespace(json=True, no_report=False, quiet=True, baseline=baseline)
     assert report_cli.finish(sweep, args, {}) == 0
     return json.loads(capsys.readouterr().out)
 
@@ -76,6 +83,44 @@ def test_a_second_report_of_an_unchanged_sweep_writes_no_report(tmp_path, drawn,
     assert page.stat().st_mtime_ns == written
     assert second == first  # the stored summary is the summary
     assert first["levels"][0]["evaluated"] == 2
+
+
+def test_what_the_report_found_is_in_the_summary_printed_written_and_cached(
+    tmp_path, drawn, capsys
+):
+    sweep = finished_sweep(tmp_path / "sweep")
+    first = _report(sweep, capsys)
+    second = _report(sweep, capsys)
+    written = json.loads((sweep / "summary.json").read_text())
+    assert drawn == [sweep]
+    for summary in (first, second, written):
+        assert summary["recommendation"]["sentence"] == "none works"
+        assert summary["comparison"]["baseline"]["label"] == "table3"
+        assert "margins" in summary
+
+
+def test_another_baseline_is_another_report_and_then_cached(tmp_path, drawn, capsys):
+    sweep = finished_sweep(tmp_path / "sweep")
+    _report(sweep, capsys)
+    against_fig7a = _report(sweep, capsys, baseline="fig7a")
+    again = _report(sweep, capsys, baseline="fig7a")
+    assert drawn == [sweep, sweep]
+    assert against_fig7a["comparison"]["baseline"]["label"] == "fig7a"
+    assert again == against_fig7a
+
+
+def test_the_key_follows_the_baseline_by_its_values_not_only_its_name(tmp_path):
+    sweep = finished_sweep(tmp_path / "sweep")
+    rows = report_cache.report_key(sweep / "results.sqlite")
+    table3 = baseline_of("table3")
+    keys = {
+        report_cache.with_baseline(rows, table3),
+        report_cache.with_baseline(rows, baseline_of("fig7a")),
+        report_cache.with_baseline(rows, ("table3", [v + 1e-9 for v in table3[1]])),
+    }
+    assert len(keys) == 3 and rows not in keys
+    assert report_cache.with_baseline(rows, table3) == report_cache.with_baseline(rows, table3)
+    assert report_cache.with_baseline(None, table3) is None
 
 
 def test_a_changed_sweep_gets_a_new_report(tmp_path, drawn, capsys):

@@ -13,12 +13,15 @@ from experiments.sweep.config import config_from_dict
 from experiments.sweep.ladder import run_sweep
 from experiments.sweep.report import write_report
 from experiments.sweep.summary import summarise
+from feeders.design import PRESETS
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
-def passive_sweep(tmp_path: Path, target: float) -> tuple[Path, str]:
-    """A four-design sweep with only a passive rung of two trials, and its report."""
+def passive_sweep(tmp_path: Path, target: float, **options) -> tuple[Path, str]:
+    """A four-design sweep with only a passive rung of two trials, and its report (without
+    the recommended design's margins unless ``margins=True``: they are tested in
+    test_report_recommendation.py)."""
     data = {
         **copy.deepcopy(TINY),
         "designs": {"count": 4, "seed": 0},  # design 3 works (the default sweep)
@@ -32,7 +35,7 @@ def passive_sweep(tmp_path: Path, target: float) -> tuple[Path, str]:
         "holdout": {"fraction": 0.0, "seed": 7},
     }
     path = run_sweep(config_from_dict(data), tmp_path / "sweep")
-    page = write_report(tmp_path / "sweep", summarise(path), path)
+    page = write_report(tmp_path / "sweep", summarise(path), path, **{"margins": False, **options})
     return page, page.read_text(encoding="utf-8")
 
 
@@ -57,3 +60,11 @@ def test_a_sweep_where_nothing_works_says_why_there_is_no_comparison(
     page, text = passive_sweep(tmp_path, target=target)  # no lower bound exceeds 1
     assert "No comparison with table3 on fresh draws: no design works" in text
     assert not list((page.parent / "figures").glob("overlay_*.png"))
+
+
+def test_the_comparison_is_with_the_baseline_given(tmp_path: Path) -> None:
+    baseline = ("fig7a", [float(v) for v in PRESETS["fig7a"].to_vector()])
+    _, text = passive_sweep(tmp_path, target=0.0, baseline=baseline)
+    assert "Why this design: the recommendation against fig7a on fresh draws" in text
+    assert "against table3" not in text
+    assert "40 fresh draws shared with fig7a" in text

@@ -1,0 +1,104 @@
+"""What a sweep's report finds beyond its summary (issue 25): the comparison with the baseline
+on fresh draws, the recommendation, and the recommended design's tolerance margins, on the
+page, in ``summary.json`` and in the printed JSON, kept by the report's cache; and the
+margins, most of a report's time, shown as a bar with a fixed total while they run."""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import io
+import json
+from pathlib import Path
+
+import pytest
+from sweep_fixtures import TINY
+
+from experiments.cli import report as report_cli
+from experiments.margins.axes import axes
+from experiments.sweep.config import config_from_dict
+from experiments.sweep.ladder import run_sweep
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_margins_bar_has_one_step_per_axis_from_the_start() -> None:
+    assert report_cli.MARGINS_AXES == len(axes())
+    stream = io.StringIO()
+    progress = report_cli.MarginsProgress(quiet=False, stream=stream)
+    progress("margins", {"design": "design 3", "axes": report_cli.MARGINS_AXES})
+    assert "margins of design 3:   0%|" in stream.getvalue()
+    assert f"0/{report_cli.MARGINS_AXES}" in stream.getvalue()
+    for axis in axes():
+        progress("axis", {"parameter": axis.name})
+    progress.close()
+    drawn = stream.getvalue()
+    assert f"{report_cli.MARGINS_AXES}/{report_cli.MARGINS_AXES}" in drawn
+    assert "100%" in drawn and drawn.count("100%") == 1  # only once every axis is done
+
+
+def test_a_quiet_report_draws_no_margins_bar() -> None:
+    stream = io.StringIO()
+    progress = report_cli.MarginsProgress(quiet=True, stream=stream)
+    progress("margins", {"design": "design 3", "axes": 16})
+    progress("axis", {"parameter": "a"})
+    progress.close()
+    assert stream.getvalue() == ""
+
+
+@pytest.mark.slow  # about 70 s on 2 busy cores: a sweep, 160 fresh trials, 16 axes' margins
+def test_a_sweep_report_recommends_a_confirmed_design_with_its_margins(tmp_path, capsys):
+    data = {
+        **copy.deepcopy(TINY),
+        "designs": {"count": 4, "seed": 0},  # design 3 works (the default sweep)
+        "feeder": {"friction": 0.05},
+        "ladder": [
+            {
+                "level": "passive",
+                "verdict": {"target": 0.0, "min_drops": 2, "batch": 2, "max_drops": 2},
+            }
+        ],
+        "holdout": {"fraction": 0.0, "seed": 7},
+    }
+    out = tmp_path / "sweep"
+    run_sweep(config_from_dict(data), out)
+    args = argparse.Namespace(json=True, no_report=False, quiet=True, baseline="table3", workers=2)
+    assert report_cli.finish(out, args, {}) == 0
+    printed = json.loads(capsys.readouterr().out)
+    written = json.loads((out / "summary.json").read_text())
+    recommendation = written["recommendation"]
+    assert recommendation["confirmed"] and recommendation["label"].startswith("design ")
+    assert recommendation["label"] == recommendation["ranking"][0]
+    margins = written["margins"]
+    assert margins["design"] == recommendation["label"] and margins["works"]
+    assert len(margins["margins"]) == len(axes()) and margins["target"] == 0.0
+    assert written["comparison"]["baseline"]["label"] == "table3"
+    assert {k: printed[k] for k in ("comparison", "recommendation", "margins")} == {
+        k: written[k] for k in ("comparison", "recommendation", "margins")
+    }
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert f"Build {recommendation['label']}" in page
+    assert f"How much tolerance it has: the margins of {recommendation['label']}" in page
+    assert 'src="figures/margins.png"' in page
+    assert (out / "figures" / "margins.png").read_bytes()[:8] == PNG_MAGIC
+    drawn = (out / "report.html").stat().st_mtime_ns
+    assert report_cli.finish(out, args, {}) == 0  # cached: nothing computed or drawn again
+    assert json.loads(capsys.readouterr().out)["margins"] == margins
+    assert (out / "report.html").stat().st_mtime_ns == drawn
+
+
+def test_report_refuses_a_bad_baseline_in_one_line(tmp_path: Path) -> None:
+    from experiments.cli.usage import UsageError
+
+    args = argparse.Namespace(dir=tmp_path, json=False, baseline="table4", workers=None)
+    with pytest.raises(UsageError, match="--baseline"):
+        report_cli.run(args)
+
+
+def test_run_refuses_a_bad_baseline_before_any_work() -> None:
+    from experiments.cli import run_sweep
+    from experiments.cli.usage import UsageError
+
+    args = argparse.Namespace(executor="local", scheduler=None, baseline="1,2,3")
+    with pytest.raises(UsageError, match="--baseline"):
+        run_sweep.run(args)
