@@ -82,8 +82,12 @@ def comparison_html(comparison: dict[str, Any], figures: dict[str, Path]) -> lis
         f"perturbed trials (both entries each, seed {int(comparison['seed'])}, not a seed any "
         "design was ranked with): trial i of every design sees the same entry noise, friction "
         "and manufacturing errors, so the differences below are the designs', not the draws'. "
-        f"Cost: {drops * 2 * (len(designs) + 1)} drops in "
-        f"{float(comparison.get('wall_time_s') or 0.0):.1f} s.</p>",
+        f"Cost: {drops * 2 * (len(designs) + 1)} drops"
+        + (
+            f" in {float(comparison['wall_time_s']):.1f} s.</p>"
+            if comparison.get("wall_time_s") is not None
+            else " (their time was not recorded).</p>"
+        ),
     ]
     if not base.get("verdict"):
         parts.append(f"<p>{e(name)} cannot be built here ({e(str(base.get('reason')))}).</p>")

@@ -12,6 +12,7 @@ on the room ("at least"): the search stops at the box.
 from __future__ import annotations
 
 import html
+import math
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +20,7 @@ from experiments.report_kit.cells import DASH, cell
 from experiments.report_kit.page import figure_html, html_table
 
 MARGINS = "margins"
+SIDES = ("low", "high")
 TIGHTEST = 3  # axes named in the one-line summary
 
 
@@ -52,13 +54,19 @@ def at_edge(row: dict[str, Any], side: str) -> bool:
 
 
 def tightest(margins: dict[str, Any], count: int = TIGHTEST) -> list[dict[str, Any]]:
-    """The ``count`` axes with the least room on their tighter side, tightest first; an axis
-    without a margin comes before every axis with one. Each entry: ``parameter``,
-    ``meaning``, ``below`` and ``above`` (fractions of the box, None without a margin)."""
+    """The ``count`` axes with the least room on their tighter side found inside the box
+    (a side that reached the box's edge is the box's limit, not the design's), tightest
+    first; an axis without a margin comes before every axis with one. Each entry:
+    ``parameter``, ``meaning``, ``below`` and ``above`` (fractions of the box, None without
+    a margin) and ``edges`` (whether each side reached the box's edge)."""
     rows = []
     for row in margins.get("margins") or []:
         r = room(row)
-        key = -1.0 if r is None else min(r)
+        # a side that reached the box's edge is limited by the box, not by the design
+        inside = (
+            [] if r is None else [x for x, s in zip(r, SIDES, strict=True) if not at_edge(row, s)]
+        )
+        key = -1.0 if r is None else min(inside, default=math.inf)
         rows.append(
             (
                 key,
@@ -67,6 +75,7 @@ def tightest(margins: dict[str, Any], count: int = TIGHTEST) -> list[dict[str, A
                     "meaning": row.get("meaning", ""),
                     "below": None if r is None else r[0],
                     "above": None if r is None else r[1],
+                    "edges": tuple(at_edge(row, s) for s in SIDES),
                 },
             )
         )
@@ -93,8 +102,10 @@ def margins_sentence(margins: dict[str, Any]) -> str:
         if t["below"] is None:
             parts.append(f"{t['parameter']} none (below the target at nominal)")
         else:
+            low_edge, high_edge = t["edges"]
             parts.append(
-                f"{t['parameter']} -{100.0 * t['below']:.1f}% / +{100.0 * t['above']:.1f}%"
+                f"{t['parameter']} {_percent(t['below'], low_edge)} / "
+                f"{_percent(t['above'], high_edge)}"
             )
     return (
         "the tightest, as room below / above the nominal in fractions of the axis's box: "
@@ -115,10 +126,11 @@ def margins_html(
             f"<p>No margins: {e(absent or 'nothing to measure')}.</p>",
         ]
     name = str(margins.get("design", "the design"))
+    meaning = str(margins.get("meaning", ""))
     cost = margins.get("cost") or {}
     parts = [
         f'<h2 id="margins">How much tolerance it has: the margins of {e(name)}</h2>',
-        f"<p>Per axis, with the others at nominal: {e(str(margins.get('meaning', '')))}. "
+        f"<p>{e(meaning[:1].upper() + meaning[1:])}. "
         f"Target {cell(margins.get('target'))}, {cell(margins.get('drops_per_value'))} "
         f"trials per value (seed {cell(margins.get('seed'))}). Cost: "
         f"{cell(cost.get('drops'))} drops, {cell(cost.get('wall_time_s'), '.1f')} s on "

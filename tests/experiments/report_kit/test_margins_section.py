@@ -57,7 +57,7 @@ def test_the_tightest_axes_come_first_and_an_axis_without_margin_before_all() ->
     )
     assert [t["parameter"] for t in tightest(data)] == ["c", "b", "d"]
     sentence = margins_sentence(data)
-    assert "c none" in sentence and "b -2.0% / +40.0%" in sentence
+    assert "c none" in sentence and "b 2.0% / 40.0%" in sentence
 
 
 def test_a_design_that_does_not_work_has_no_margins_and_the_page_says_so(tmp_path: Path) -> None:
@@ -76,3 +76,11 @@ def test_the_table_marks_an_end_at_the_box_edge_as_at_least() -> None:
 def test_without_margins_the_reason_is_given() -> None:
     page = "\n".join(margins_html(None, {}, absent="no design works"))
     assert "No margins: no design works." in page
+
+
+def test_a_side_that_reached_the_box_edge_does_not_make_an_axis_the_tightest() -> None:
+    """r's low side stopped at the box's edge 1% below the nominal: the box limits it, not
+    the design, so b (3% of room found inside the box) is the tightest."""
+    data = margins(row("r", 0.01, [0.0, 0.9], edge=True), row("b", 0.5, [0.47, 0.9]))
+    assert tightest(data)[0]["parameter"] == "b"
+    assert "r ≥ 1.0% / 89.0%" in margins_sentence(data)

@@ -23,7 +23,7 @@ def test_a_confirmed_design_is_named_to_build_with_the_baseline_and_its_margins(
     )
     assert "Build design 5" in box and "confirmed:" in box
     assert "40/40 against 38/40" in box and "failed on 2, the reverse on 0" in box
-    assert "b -2.0% / +40.0%" in box and 'href="#margins"' in box
+    assert "b 2.0% / 40.0%" in box and 'href="#margins"' in box
 
 
 def test_an_unconfirmed_design_is_not_called_one_to_build() -> None:
