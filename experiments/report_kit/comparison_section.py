@@ -77,8 +77,8 @@ def comparison_html(comparison: dict[str, Any], figures: dict[str, Path]) -> lis
     target = float(comparison["target"])
     designs = list(comparison.get("designs") or [])
     parts = [
-        f'<h2 id="why">Why this design: the recommendation against {e(name)} on fresh draws</h2>',
-        f"<p>Each recommended design and {e(name)} were judged again on the same {drops} fresh "
+        f'<h2 id="why">Why this design: compared with {e(name)} on the same fresh draws</h2>',
+        f"<p>Each compared design and {e(name)} were judged again on the same {drops} fresh "
         f"perturbed trials (both entries each, seed {int(comparison['seed'])}, not a seed any "
         "design was ranked with): trial i of every design sees the same entry noise, friction "
         "and manufacturing errors, so the differences below are the designs', not the draws'. "

@@ -349,5 +349,7 @@ def best_figure(summary: dict, best: list[dict], path: Path) -> Path:
         else:
             draw_scene(ax, scene)
         ax.set_title(title, fontsize=9)
-    fig.suptitle(f"{summary.get('name', 'sweep')}: best designs", fontsize=11)
+    fig.suptitle(
+        f"{summary.get('name', 'sweep')}: the top designs by the sweep's own verdict", fontsize=11
+    )
     return save_figure(fig, path)

@@ -387,11 +387,11 @@ def summary_table(summary: dict[str, Any]) -> str:
         if "verdict" in b:
             lo, hi = b["verdict"]["both"]["interval"]
             lines.append(
-                f"best: design {b['design_id']}, P(both) {b['verdict']['both']['p']:.2f} "
+                f"top: design {b['design_id']}, P(both) {b['verdict']['both']['p']:.2f} "
                 f"[{lo:.2f}, {hi:.2f}], mean exit time {exit_time}"
             )
         else:
-            lines.append(f"best: design {b['design_id']}, exit time {exit_time}")
+            lines.append(f"top: design {b['design_id']}, exit time {exit_time}")
     for q in summary["quarantined"]:
         lines.append(f"quarantined: design {q['design_id']} at {q['level']}: {q['reason']}")
     return "\n".join(lines)

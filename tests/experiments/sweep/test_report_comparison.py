@@ -44,7 +44,7 @@ def test_a_sweep_with_a_design_that_works_shows_why_this_design(tmp_path: Path) 
     summary = summarise(tmp_path / "sweep" / "results.sqlite")
     assert summary["best"], "the fixture needs a design that works"
     top = summary["best"][0]["design_id"]
-    assert "Why this design: the recommendation against table3 on fresh draws" in text
+    assert "Why this design: compared with table3 on the same fresh draws" in text
     assert f"design {top} against table3" in text
     assert "40 fresh perturbed trials" in text and "drops in" in text
     assert "confirmed" in text and "of Table 2&#x27;s range" in text
@@ -65,6 +65,6 @@ def test_a_sweep_where_nothing_works_says_why_there_is_no_comparison(
 def test_the_comparison_is_with_the_baseline_given(tmp_path: Path) -> None:
     baseline = ("fig7a", [float(v) for v in PRESETS["fig7a"].to_vector()])
     _, text = passive_sweep(tmp_path, target=0.0, baseline=baseline)
-    assert "Why this design: the recommendation against fig7a on fresh draws" in text
+    assert "Why this design: compared with fig7a on the same fresh draws" in text
     assert "against table3" not in text
     assert "40 fresh draws shared with fig7a" in text

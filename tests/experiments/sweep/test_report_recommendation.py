@@ -172,6 +172,7 @@ def test_an_unconfirmed_top_design_is_not_called_best_or_to_be_built() -> None:
     assert "none of the top 3" in text
     assert re.search(r"\bbest\b", text, re.I) is None
     assert "Build " not in text
+    assert "recommended design" not in text
     assert "No margins: no design is recommended" in text
 
 
