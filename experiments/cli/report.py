@@ -135,13 +135,12 @@ def finish(
     import time
 
     from experiments.progress import say
+    from experiments.report_kit.cache import report_intact, report_state
     from experiments.sweep import results_db
     from experiments.sweep.report_cache import (
         OMPL_DATABASE,
         load_cache,
-        report_intact,
         report_key,
-        report_state,
         save_cache,
         with_baseline,
     )

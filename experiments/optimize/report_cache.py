@@ -12,63 +12,41 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 from pathlib import Path
 from typing import Any
 
+from experiments.report_kit.cache import (
+    code_digest,
+    read_json,
+    report_intact,
+    report_state,
+    save_json,
+)
+
 CACHE = "report-cache.json"
 CACHE_FORMAT = "partfeeder optimize report cache 1"
-# packages whose code decides what the report shows: a change in any draws it again
-REPORT_CODE = ("experiments", "feeders", "validity")
 # results that change with every run of the command, not with what the report shows
 VOLATILE = ("wall_time_s", "new_evaluations", "files")
 
 
 def report_key(results: dict[str, Any], config: dict[str, Any]) -> str:
-    """SHA-256 of ``results`` (but :data:`VOLATILE`), ``config`` and the source of
-    :data:`REPORT_CODE` with the matplotlib and numpy versions."""
-    from importlib import metadata, util
-
+    """SHA-256 of ``results`` (but :data:`VOLATILE`), ``config`` and the code that draws
+    the report (:func:`experiments.report_kit.cache.code_digest`)."""
     digest = hashlib.sha256(CACHE_FORMAT.encode())
     shown = {k: v for k, v in results.items() if k not in VOLATILE}
     digest.update(json.dumps([shown, config], sort_keys=True, default=str).encode())
-    for package in REPORT_CODE:
-        spec = util.find_spec(package)
-        for root in (spec.submodule_search_locations or []) if spec else []:
-            for source in sorted(Path(root).rglob("*.py")):
-                digest.update(str(source.relative_to(root)).encode())
-                digest.update(source.read_bytes())
-    for dist in ("matplotlib", "numpy"):
-        digest.update(f"{dist} {metadata.version(dist)}".encode())
-    return digest.hexdigest()
-
-
-def report_state(out: Path) -> dict[str, list[int]]:
-    """``report.html`` and each picture in ``figures/`` by size and modification time (ns)."""
-    paths = [out / "report.html", *sorted((out / "figures").glob("*"))]
-    return {
-        str(p.relative_to(out)): [p.stat().st_size, p.stat().st_mtime_ns]
-        for p in paths
-        if p.is_file()
-    }
+    return code_digest(digest).hexdigest()
 
 
 def report_current(out: Path, key: str) -> bool:
     """Whether ``out``'s report was written under ``key`` and its files are as written: none
     removed, replaced, edited or added."""
-    try:
-        cache = json.loads((out / CACHE).read_text())
-    except (OSError, ValueError):
-        return False
+    cache = read_json(out / CACHE)
     if not isinstance(cache, dict) or cache.get("key") != key:
         return False
-    state = cache.get("state")
-    return isinstance(state, dict) and bool(state) and report_state(out) == state
+    return report_intact(out, cache.get("state"))
 
 
 def save_cache(out: Path, key: str) -> None:
-    """Record the report just written under ``key`` (written beside and renamed: a reader
-    never sees half of it)."""
-    partial = out / f"{CACHE}.partial"
-    partial.write_text(json.dumps({"key": key, "state": report_state(out)}, indent=1))
-    os.replace(partial, out / CACHE)
+    """Record the report just written under ``key`` (written whole or not at all)."""
+    save_json(out / CACHE, {"key": key, "state": report_state(out)})

@@ -7,23 +7,20 @@ nominal drops drawn again)."""
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 from typing import Any
 
-# packages whose code decides what a report shows: a change in any redraws it
-REPORT_CODE = ("experiments", "feeders", "validity", "planners")
+from experiments.report_kit.cache import code_digest, read_json, save_json
 
 
 def report_key(results: Path) -> str | None:
     """SHA-256 of the rows of the results database at ``results`` (every table by name, its
     rows in rowid order, as SQLite's dump gives them: a run that finds nothing to do leaves
-    them as they were, though it rewrites the file's header), of the source of
-    :data:`REPORT_CODE` and of the matplotlib and numpy versions; None when the database
-    cannot be read (then nothing is cached, and the summary says what is wrong)."""
+    them as they were, though it rewrites the file's header) and of the code that draws the
+    report (:func:`experiments.report_kit.cache.code_digest`); None when the database cannot
+    be read (then nothing is cached, and the summary says what is wrong)."""
     import hashlib
     import sqlite3
-    from importlib import metadata, util
 
     from experiments.database_file import open_read_only
 
@@ -38,15 +35,7 @@ def report_key(results: Path) -> str | None:
             db.close()
     except (sqlite3.Error, OSError, UnicodeError):
         return None
-    for package in REPORT_CODE:
-        spec = util.find_spec(package)
-        for root in (spec.submodule_search_locations or []) if spec else []:
-            for source in sorted(Path(root).rglob("*.py")):
-                digest.update(str(source.relative_to(root)).encode())
-                digest.update(source.read_bytes())
-    for dist in ("matplotlib", "numpy"):
-        digest.update(f"{dist} {metadata.version(dist)}".encode())
-    return digest.hexdigest()
+    return code_digest(digest).hexdigest()
 
 
 def with_baseline(key: str | None, baseline: tuple[str, list[float]]) -> str | None:
@@ -70,10 +59,7 @@ def load_cache(out: Path, key: str | None) -> dict[str, Any] | None:
     """The cache of ``out`` when it was written under ``key``, else None."""
     if key is None:
         return None
-    try:
-        cache = json.loads((out / CACHE).read_text())
-    except (OSError, ValueError):
-        return None
+    cache = read_json(out / CACHE)
     if not isinstance(cache, dict) or cache.get("key") != key:
         return None
     if not isinstance(cache.get("summary"), dict):
@@ -83,23 +69,4 @@ def load_cache(out: Path, key: str | None) -> dict[str, Any] | None:
 
 def save_cache(out: Path, cache: dict[str, Any]) -> None:
     """Written beside and renamed: a reader never sees half of it."""
-    partial = out / f"{CACHE}.partial"
-    partial.write_text(json.dumps(cache, indent=1))
-    os.replace(partial, out / CACHE)
-
-
-def report_state(out: Path) -> dict[str, Any]:
-    """``report.html`` and each picture in ``figures/`` by size and modification time (ns),
-    as just written."""
-    paths = [out / "report.html", *sorted((out / "figures").glob("*"))]
-    return {
-        str(p.relative_to(out)): [p.stat().st_size, p.stat().st_mtime_ns]
-        for p in paths
-        if p.is_file()
-    }
-
-
-def report_intact(out: Path, state: Any) -> bool:
-    """The report's files are those written under the cached key: none removed, replaced,
-    edited or added."""
-    return isinstance(state, dict) and bool(state) and report_state(out) == state
+    save_json(out / CACHE, cache)
