@@ -168,13 +168,20 @@ def both(*checks: Check) -> Check:
 
 SWEEP = ("report.html", "figures/*.png", "results.sqlite", "summary.json", "ompl/benchmark.db")
 CLAIMS: dict[str, Check] = {
-    "partfeeder run": files(*(f"sweep/default/{f}" for f in SWEEP)),
+    # README: the report opens with the design to build, and gives its margins
+    "partfeeder run": both(
+        files(*(f"sweep/default/{f}" for f in SWEEP), "sweep/default/figures/margins.png"),
+        contains(r"^recommended: "),
+    ),
     "partfeeder run paper --out sweep/paper": files("sweep/paper/summary.json"),
     f"partfeeder run my.yaml --executor dask --scheduler {SCHEDULER}": files(
         "sweep/my/summary.json", "sweep/my/ompl/benchmark.db"
     ),
     "partfeeder report sweep/default": files("sweep/default/report.html"),
-    "partfeeder optimize --from sweep/default": files("optimize/optimize/evaluations.sqlite"),
+    "partfeeder optimize --from sweep/default": files(
+        "optimize/optimize/evaluations.sqlite", "optimize/optimize/figures/overlay_*.png"
+    ),
+    "partfeeder bench --trial": contains(r"trial"),
     "partfeeder run --json": is_json,
     "partfeeder plan --design table3 --orientation both --time 5 --seed 1 --out out": both(
         plan_solved, files("out/*.png")

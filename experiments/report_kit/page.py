@@ -16,7 +16,7 @@ body { font-family: sans-serif; margin: 2em; max-width: 1200px; color: #222; }
 table { border-collapse: collapse; margin: 0.5em 0 1.5em 0; font-size: 0.9em; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
 th { background: #f0f0f0; }
-td.text { text-align: left; }
+td.text, th.text { text-align: left; }
 img { max-width: 100%; border: 1px solid #eee; margin: 0.5em 0; }
 p.note { color: #666; }
 div.recommendation { border: 2px solid #2ca02c; background: #f4fbf4; padding: 0.3em 1em;
@@ -31,7 +31,12 @@ def html_table(
 ) -> str:
     """An HTML table; every cell is escaped here (callers pass plain text). Columns in
     ``text_columns`` are left-aligned, the others (numbers) right-aligned."""
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
+    head = "".join(
+        f'<th class="text">{html.escape(h)}</th>'
+        if k in text_columns
+        else f"<th>{html.escape(h)}</th>"
+        for k, h in enumerate(headers)
+    )
     body = []
     for row in rows:
         cells = "".join(

@@ -112,7 +112,7 @@ def _text(page: str) -> str:
 def _best_table_status(page: str) -> dict[str, str]:
     """Per design id, the "fresh draws" cell of the top designs' table."""
     table = page.split("Top designs by the sweep", 1)[1].split("</table>", 1)[0]
-    header = re.findall(r"<th>(.*?)</th>", table)
+    header = re.findall(r"<th[^>]*>(.*?)</th>", table)
     column = header.index("fresh draws")
     out = {}
     for row in re.findall(r"<tr>(.*?)</tr>", table, re.S)[1:]:
