@@ -378,7 +378,22 @@ def _recommendation(results: dict[str, Any]) -> str:
             None, None, None, "", absent="the optimisation has not judged its optimum yet"
         )
     margins = results.get("margins")
-    return recommendation_html(OPTIMUM, comparison, margins, chosen_sentence(results))
+    optimum, baseline = labels(results)
+    g = [
+        ((results.get(label) or {}).get("verdict") or {}).get("mean_g")
+        for label in (optimum, baseline)
+    ]
+    notes = []
+    if None not in g:
+        notes.append(
+            (
+                "What it minimised",
+                f"Eq. 10's G (both entries' exit times plus w times their "
+                f"distances from the goal; lower is better), mean {g[0]:.2f} s against "
+                f"{baseline}'s {g[1]:.2f} s on the same draws.",
+            )
+        )
+    return recommendation_html(OPTIMUM, comparison, margins, chosen_sentence(results), notes=notes)
 
 
 def _strips(results: dict[str, Any], figures: dict[str, Path]) -> list[str]:

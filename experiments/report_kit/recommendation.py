@@ -12,6 +12,7 @@ so, and why, instead of naming a design.
 from __future__ import annotations
 
 import html
+from collections.abc import Sequence
 from typing import Any
 
 from experiments.report_kit.cells import cell
@@ -34,11 +35,13 @@ def recommendation_html(
     margins: dict[str, Any] | None,
     chosen: str,
     absent: str | None = None,
+    notes: Sequence[tuple[str, str]] = (),
 ) -> str:
     """The box: ``label`` (the design to build, an entry of ``comparison["designs"]``) with
     how it was ``chosen``, its confirmation on fresh draws, its numbers beside the baseline's
-    on the same draws, and its tightest margins; with ``label`` None, ``absent`` says why
-    no design is recommended."""
+    on the same draws, its tightest margins and the job's own ``notes`` (title and plain
+    text: what it optimised, say); with ``label`` None, ``absent`` says why no design is
+    recommended."""
     e = html.escape
     if label is None or comparison is None:
         return (
@@ -67,6 +70,7 @@ def recommendation_html(
             f"{paired['design_only']}, the reverse on {paired['baseline_only']}, of "
             f"{paired['draws']}."
         )
+    lines += [f"<b>{e(title)}:</b> {e(text)}" for title, text in notes]
     if margins is not None:
         lines.append(
             f'<b>Tolerance:</b> {e(margins_sentence(margins))} (<a href="#margins">margins</a>).'

@@ -7,6 +7,7 @@ to build."""
 from __future__ import annotations
 
 import argparse
+import html
 import shutil
 from pathlib import Path
 from typing import Any
@@ -244,6 +245,8 @@ def test_the_report_opens_with_what_to_build_then_why_and_the_margins(tiny, tmp_
     )
     assert box < why < margins < text.index("How it was found")
     assert "optimum against table3" in text
+    g = [results[label]["verdict"]["mean_g"] for label in ("optimum", "table3")]
+    assert f"mean {g[0]:.2f} s against table3's {g[1]:.2f} s" in html.unescape(text)
     assert 'src="figures/overlay_optimum.png"' in text
     assert 'src="figures/margins.png"' in text
     assert (out / "figures" / "overlay_optimum.png").is_file()
