@@ -127,12 +127,15 @@ def exercise(level_name: str) -> None:
 
 
 def compile_kernels(
-    levels: Iterable[str], on_first_compile: Callable[[], object] | None = None
+    levels: Iterable[str],
+    on_first_compile: Callable[[], object] | None = None,
+    on_level: Callable[[str], object] | None = None,
 ) -> KernelLoad:
     """Compile, or load from numba's cache, every kernel of ``levels`` (names of
     ``validity.LEVELS``) in this process, so processes started afterwards on this machine load
     them from the cache. ``on_first_compile()`` is called once, when the first kernel missing
-    from the cache starts compiling (the moment to tell a user why they wait)."""
+    from the cache starts compiling (the moment to tell a user why they wait);
+    ``on_level(name)`` after each level's kernels are ready (a progress bar's step)."""
     chosen = tuple(dict.fromkeys(levels))
     from validity import LEVELS
 
@@ -144,5 +147,7 @@ def compile_kernels(
     with _on_first_compile(on_first_compile):
         for name in chosen:
             exercise(name)
+            if on_level is not None:
+                on_level(name)
     misses, hits = kernel_counts()
     return KernelLoad(chosen, misses - misses0, hits - hits0, time.perf_counter() - start)
