@@ -157,13 +157,25 @@ def necessary_conditions(
             goal_slices = _slices_overlapping(
                 goal.yaw - goal.yaw_tol, goal.yaw + goal.yaw_tol, slices
             )
+            fits = np.zeros((slices // 2 if slices % 2 == 0 else slices, nx, ny), np.int8)
             ok = True
             for shift in (0.0, math.pi):  # heavy trailing, heavy leading
                 entry = _slices_overlapping(
                     envelope.entry_yaw[0] + shift, envelope.entry_yaw[1] + shift, slices
                 )
                 ok = ok and sliced_flood(
-                    dist, x0, y0, h, axis, radius, envelope.entry, entry, goal_slices, y_goal
+                    dist,
+                    x0,
+                    y0,
+                    h,
+                    axis,
+                    radius,
+                    envelope.entry,
+                    entry,
+                    goal_slices,
+                    y_goal,
+                    reached,
+                    fits,
                 )
             details[test] = bool(ok)
         if not ok:

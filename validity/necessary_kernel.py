@@ -254,6 +254,29 @@ def turn_room(
 
 
 @njit(cache=True)
+def _box_fits(
+    fits: np.ndarray,
+    dist: np.ndarray,
+    x0: float,
+    y0: float,
+    h: float,
+    k: int,
+    i: int,
+    j: int,
+    width: float,
+    axis: np.ndarray,
+    radius: float,
+) -> bool:
+    """:func:`pose_box_fits` of slice ``k``, remembered in ``fits`` (0 not yet asked, 1 fits,
+    2 does not; slice ``k`` and ``k + n/2`` hold the same shape, the part being symmetric)."""
+    shape = k % fits.shape[0]
+    if fits[shape, i, j] == 0:
+        ok = pose_box_fits(dist, x0, y0, h, i, j, (k + 0.5) * width, 0.5 * width, axis, radius)
+        fits[shape, i, j] = 1 if ok else 2
+    return fits[shape, i, j] == 1
+
+
+@njit(cache=True)
 def sliced_flood(
     dist: np.ndarray,
     x0: float,
@@ -265,56 +288,59 @@ def sliced_flood(
     entry_slices: np.ndarray,
     goal_slices: np.ndarray,
     y_goal: float,
+    reached: np.ndarray,
+    fits: np.ndarray,
 ) -> bool:
     """Whether the part can get from the entry (centre in the disc ``entry``, yaw in a slice
     flagged by ``entry_slices``) to a goal box (centre at or below ``y_goal``, yaw in a slice
-    flagged by ``goal_slices``) through boxes that may hold it: a 26-connected flood over the
-    cells times ``len(entry_slices)`` yaw slices of ``[0, 2 pi)``, slice ``k`` covering
-    ``[k, k + 1] * 2 pi / n``, each box tested once, when the flood first meets it."""
+    flagged by ``goal_slices``) through boxes that may hold it: a 26-connected search over
+    the cells times ``n = len(entry_slices)`` yaw slices of ``[0, 2 pi)``, slice ``k``
+    covering ``[k, k + 1] * 2 pi / n``. Only cells of ``reached`` (the corridor's flood, which
+    holds every cell a reachable pose's centre can be in) are searched; ``fits`` (``(n // 2,
+    nx, ny)`` int8, zeros, for even ``n``; else ``(n, nx, ny)``) remembers each box's test
+    and may be shared by calls on the same grid. Depth first, downward first: a design that
+    passes is found long before the search is exhausted."""
     nx, ny = dist.shape
     n = entry_slices.shape[0]
     width = 2.0 * math.pi / n
-    state = np.zeros((n, nx, ny), dtype=np.int8)  # 0 untested, 1 kept, 2 reached, 3 rejected
-    queue = np.empty(n * nx * ny, dtype=np.int64)
-    head = tail = 0
+    seen = np.zeros((n, nx, ny), dtype=np.bool_)
+    stack = np.empty(n * nx * ny, dtype=np.int64)
+    top = 0
     reach = entry[2] + _HALF_DIAGONAL * h
     for k in range(n):
         if not entry_slices[k]:
             continue
         for i in range(nx):
             for j in range(ny):
+                if not reached[i, j]:
+                    continue
                 if math.hypot(x0 + i * h - entry[0], y0 + j * h - entry[1]) > reach:
                     continue
-                if pose_box_fits(
-                    dist, x0, y0, h, i, j, (k + 0.5) * width, 0.5 * width, axis, radius
-                ):
-                    state[k, i, j] = 2
-                    queue[tail] = (k * nx + i) * ny + j
-                    tail += 1
-                else:
-                    state[k, i, j] = 3
-    while head < tail:
-        box = queue[head]
-        head += 1
+                seen[k, i, j] = True
+                if _box_fits(fits, dist, x0, y0, h, k, i, j, width, axis, radius):
+                    stack[top] = (k * nx + i) * ny + j
+                    top += 1
+    while top > 0:
+        top -= 1
+        box = stack[top]
         k, rest = box // (nx * ny), box % (nx * ny)
         i, j = rest // ny, rest % ny
         if goal_slices[k] and y0 + j * h - 0.5 * h <= y_goal:
             return True
-        for dk in range(-1, 2):
-            kk = (k + dk) % n
+        for dj in range(1, -2, -1):  # pushed last, searched first: downward
+            b = j + dj
+            if b < 0 or b >= ny:
+                continue
             for di in range(-1, 2):
                 a = i + di
-                if a < 0 or a >= nx:
+                if a < 0 or a >= nx or not reached[a, b]:
                     continue
-                for dj in range(-1, 2):
-                    b = j + dj
-                    if b < 0 or b >= ny or state[kk, a, b] != 0:
+                for dk in range(-1, 2):
+                    kk = (k + dk) % n
+                    if seen[kk, a, b]:
                         continue
-                    yaw = (kk + 0.5) * width
-                    if pose_box_fits(dist, x0, y0, h, a, b, yaw, 0.5 * width, axis, radius):
-                        state[kk, a, b] = 2
-                        queue[tail] = (kk * nx + a) * ny + b
-                        tail += 1
-                    else:
-                        state[kk, a, b] = 3
+                    seen[kk, a, b] = True
+                    if _box_fits(fits, dist, x0, y0, h, kk, a, b, width, axis, radius):
+                        stack[top] = (kk * nx + a) * ny + b
+                        top += 1
     return False
