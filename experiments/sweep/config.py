@@ -16,6 +16,8 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
         planners: [rrt]                   # rrt, kpiece, est
         runs: 1                           # runs per planner and entry orientation
         budget: {time: 0.5}               # s per run; or {propagations: 20000, time: 60}
+        prunes: false                     # a design not planned within the budget
+                                          # ("unknown") still climbs; true: it stops here
       - ...
       - level: passive                    # the design's verdict: success probability over
         verdict: {target: 0.9, min_drops: 5, batch: 10, max_drops: 200}   # perturbed
@@ -62,8 +64,12 @@ class ConfigError(FieldError):
 @dataclass(frozen=True)
 class Rung:
     """One rung of the ladder. A planning level: its planners, runs per planner and
-    orientation, budget. The passive rung (``level: passive``): the verdict's settings and
-    perturbations (:class:`experiments.drop.verdict.VerdictSettings`,
+    orientation, budget, and ``prunes``: whether a design its planners did not solve within
+    the budget (status ``unknown``: a sampling planner proves nothing by failing) stops
+    climbing here (False, the default: it climbs on as if feasible; True: the paper's
+    pruning, which can throw away designs that work, issue 21). The passive rung (``level:
+    passive``): the verdict's settings and perturbations
+    (:class:`experiments.drop.verdict.VerdictSettings`,
     :class:`experiments.drop.perturbations.Perturbations`), every field filled in."""
 
     level: str
@@ -73,6 +79,7 @@ class Rung:
     propagations: int | None = None
     verdict: dict[str, Any] = field(default_factory=dict)
     perturbations: dict[str, float] = field(default_factory=dict)
+    prunes: bool = False
 
     def to_dict(self) -> dict[str, Any]:
         """The rung as its YAML mapping (normalised; plain data)."""
@@ -90,6 +97,7 @@ class Rung:
             "planners": list(self.planners),
             "runs": self.runs,
             "budget": budget,
+            "prunes": self.prunes,
         }
 
 
@@ -128,6 +136,9 @@ class SweepConfig:
         data = self.to_dict()
         data.pop("workers")
         data.pop("name")
+        for rung in data["ladder"]:  # the default is left out: such a config keeps the key
+            if rung.get("prunes") is False:  # it had before ``prunes`` existed
+                del rung["prunes"]
         return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
 
 
@@ -167,7 +178,7 @@ VERDICT_KEYS = WILSON_KEYS | {"rule", "works_p", "fails_p", "error"}
 def _rung(spec: Any, field_name: str) -> Rung:
     if isinstance(spec, dict) and spec.get("level") == PASSIVE:
         return _passive_rung(spec, field_name)
-    spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget"})
+    spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget", "prunes"})
     level = spec.get("level")
     if not isinstance(level, str) or level not in LEVEL_NAMES:
         raise ConfigError(
@@ -201,7 +212,10 @@ def _rung(spec: Any, field_name: str) -> Rung:
     time_s = number_field(
         budget.get("time", default_time), f"{field_name}.budget.time", 1e-3, 86400.0
     )
-    return Rung(level, tuple(planners), runs, time_s, propagations)
+    prunes = spec.get("prunes", False)
+    if not isinstance(prunes, bool):
+        raise ConfigError(f"{field_name}.prunes = {shown(repr(prunes))}; allowed: true, false")
+    return Rung(level, tuple(planners), runs, time_s, propagations, prunes=prunes)
 
 
 def config_from_dict(data: Any, name: str = "sweep") -> SweepConfig:

@@ -1,7 +1,11 @@
 """The main job: Halton designs climb the ladder of levels; only survivors go up (Sec. 4).
 
-Every design is evaluated at the first rung; a design goes up a rung when it is feasible at
-the one below (both entry orientations solved), so the costly levels see few designs. The
+Every design is evaluated at the first rung; a design goes up a rung when the one below did
+not prune it (:func:`climbs`): it is feasible there (both entry orientations solved, or the
+passive verdict says it works), or its planners did not find a path within the budget
+(``unknown``, which proves nothing) and the rung does not prune on that (``prunes: false``,
+the default; issue 21). Only a proof stops a design by default: it cannot be built, the
+verdict says it fails, or an exact test says it is infeasible. The
 designs of the holdout, a seeded random sample, climb every rung whatever their verdicts:
 their verdicts at the top level measure how well each lower level prunes (precision and
 recall) and what evaluating every design at the top would have cost (the speed-up).
@@ -18,6 +22,7 @@ Arena reads it), ``summary.json`` and the report.
 from __future__ import annotations
 
 import contextlib
+import functools
 import io
 import sqlite3
 import tempfile
@@ -28,10 +33,10 @@ from typing import Any
 import numpy as np
 
 from experiments.executors.cluster import run_dask
-from experiments.executors.local import run_local
+from experiments.executors.local import LocalPool
 from experiments.sweep import results_db
-from experiments.sweep.config import SweepConfig
-from experiments.sweep.job import SweepJob, evaluate_design, sweep_job
+from experiments.sweep.config import Rung, SweepConfig
+from experiments.sweep.job import SweepJob, evaluate_design, sweep_job, warm_up
 from feeders.halton import halton_points
 
 RESULTS_FILE = "results.sqlite"
@@ -46,6 +51,13 @@ def holdout_ids(count: int, fraction: float, seed: int) -> set[int]:
     return {int(i) for i in np.random.default_rng(seed).choice(count, size=n, replace=False)}
 
 
+def climbs(rung: Rung, status: str) -> bool:
+    """Whether a design outside the holdout goes on up after ``status`` at ``rung``: when it
+    is feasible, or ``unknown`` at a rung that does not prune (:attr:`Rung.prunes`)."""
+    status = results_db.status_of(rung.level, status)
+    return status == "feasible" or (status == "unknown" and not rung.prunes)
+
+
 def pending_jobs(
     config: SweepConfig,
     designs: dict[int, list[float]],
@@ -53,8 +65,8 @@ def pending_jobs(
     done: dict[tuple[int, str], str],
 ) -> list[SweepJob]:
     """The next job of every design, from what is stored: each design climbs from rung 0
-    while it is stored feasible (or is in the holdout and not quarantined); its first rung
-    that is not stored is its job. Designs that are finished have none."""
+    while :func:`climbs` says so (or it is in the holdout and not quarantined); its first
+    rung that is not stored is its job. Designs that are finished have none."""
     jobs = []
     for design_id, values in designs.items():
         for rung, r in enumerate(config.ladder):
@@ -62,7 +74,7 @@ def pending_jobs(
             if status is None:
                 jobs.append(sweep_job(config, design_id, values, rung))
                 break
-            if status == "quarantined" or (status != "feasible" and design_id not in holdout):
+            if status == "quarantined" or (not climbs(r, status) and design_id not in holdout):
                 break
     return jobs
 
@@ -82,8 +94,8 @@ def run_sweep(
     "finished"})`` per evaluation and ``("quarantine", {"rung", "level", "finished"})`` per
     job given up. ``designs`` is the number of designs and ``finished`` (at the start) how
     many of them had stopped climbing before this run; an event's ``finished`` says that its
-    design has stopped climbing now (no rung left, or not feasible and not in the holdout,
-    or quarantined), so every design finishes exactly once and ``designs`` is a total known
+    design has stopped climbing now (no rung left, or stopped by :func:`climbs` and not in the
+    holdout, or quarantined), so every design finishes exactly once and ``designs`` is a total known
     from the start, though the number of evaluations is not (the ladder is adaptive).
     ``evaluate`` runs in the workers (a function of a module they can import; tests replace
     it to make workers crash). A sweep with nothing left to run starts no worker.
@@ -134,9 +146,9 @@ def _climb(
         rung = int(job["rung"])
         results_db.record(db, result, rung, attempts)
         design_id = int(job["design_id"])
-        climbs = result["status"] == "feasible" or design_id in holdout
+        goes_on = climbs(config.ladder[rung], result["status"]) or design_id in holdout
         following = []
-        if climbs and rung < top:
+        if goes_on and rung < top:
             following = [sweep_job(config, design_id, designs[design_id], rung + 1)]
         if progress is not None:
             progress(
@@ -158,7 +170,10 @@ def _climb(
             )
 
     if executor == "local":
-        run_local(evaluate, jobs, on_done, on_quarantine, config.workers, config.max_attempts)
+        levels = tuple(r.level for r in config.ladder)
+        warm = functools.partial(warm_up, levels)  # no evaluation's time counts the loading
+        with LocalPool(config.workers, config.max_attempts, warm) as pool:
+            pool.run(evaluate, jobs, on_done, on_quarantine)
     elif executor == "dask":
         if not scheduler:
             raise ValueError("the dask executor needs --scheduler ADDRESS (tcp://host:port)")

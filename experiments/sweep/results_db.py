@@ -7,7 +7,10 @@ Tables (one row per ...):
 - ``designs``: a Halton design: ``design_id`` (index in the sequence), ``holdout`` (1 if it
   climbs every rung to measure the pruning), the 12 parameters as columns (Table 2's names).
 - ``evaluations``: a (design, level): ``rung`` (position in the ladder), ``status``
-  (feasible / infeasible / degenerate), ``reason`` (why degenerate), ``heavy_leading`` and
+  (feasible / infeasible / unknown / degenerate: ``unknown`` is a planning level's "not found
+  within budget", which proves nothing; a database written before it existed stored that as
+  ``infeasible``, read as ``unknown`` by :func:`status_of`), ``reason`` (why degenerate,
+  unknown or undecided), ``heavy_leading`` and
   ``heavy_trailing`` (1 solved, 0 not, NULL not run: the second entry is skipped once the
   first fails), ``wall_time_s`` (the whole evaluation, in its worker), ``worker``, ``attempts``.
 - ``runs``: one planner run of an evaluation: orientation, planner, run, seed, solved (goal
@@ -37,7 +40,10 @@ from typing import Any
 from experiments.database_file import check_file, open_read_only, table_columns
 from feeders.design import PARAMETER_NAMES
 
-STATUSES = ("feasible", "infeasible", "degenerate")
+STATUSES = ("feasible", "infeasible", "unknown", "degenerate")
+# The levels judged by sampling planners (OMPL's RRT, KPIECE1, EST): a design they do not
+# solve within the budget is "unknown", never proved infeasible (issue 21).
+SAMPLED_LEVELS = ("geometric", "kinematic", "dynamic")
 RUN_COLUMNS = (
     "planner",
     "run",
@@ -52,6 +58,7 @@ RUN_COLUMNS = (
     "exit_time_s",
 )
 
+_SCHEMA_STATUSES = ", ".join(f"'{status}'" for status in STATUSES)
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS designs (
@@ -63,7 +70,7 @@ CREATE TABLE IF NOT EXISTS evaluations (
     design_id INTEGER NOT NULL REFERENCES designs(design_id),
     level TEXT NOT NULL,
     rung INTEGER NOT NULL,
-    status TEXT NOT NULL CHECK (status IN ('feasible', 'infeasible', 'degenerate')),
+    status TEXT NOT NULL CHECK (status IN ({_SCHEMA_STATUSES})),
     reason TEXT,
     heavy_leading INTEGER,
     heavy_trailing INTEGER,
@@ -118,6 +125,15 @@ CREATE TABLE IF NOT EXISTS verdicts (
 );
 """
 DECISIONS = ("works", "fails", "undecided")
+
+
+def status_of(level: str, stored: str) -> str:
+    """The status of a stored evaluation: as stored, except that a sampled level's
+    ``infeasible`` is ``unknown`` (what a database written before ``unknown`` existed meant
+    by it: its planners did not find a path within the budget, which proves nothing)."""
+    if stored == "infeasible" and level in SAMPLED_LEVELS:
+        return "unknown"
+    return stored
 
 
 class ResultsMismatch(ValueError):
@@ -287,8 +303,35 @@ def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
         db.execute("PRAGMA journal_mode=WAL")
         db.execute("PRAGMA synchronous=NORMAL")  # durable against a killed process
         db.executescript(_SCHEMA)
+        _allow_every_status(db)
     db.row_factory = sqlite3.Row
     return db
+
+
+def _allow_every_status(db: sqlite3.Connection) -> None:
+    """Make an ``evaluations`` table created before ``unknown`` existed accept it: SQLite
+    cannot change a CHECK in place, so the table is made again with this schema's and its
+    rows copied, in one transaction (a resumed older sweep then stores new statuses)."""
+    row = db.execute(
+        "SELECT sql FROM sqlite_master WHERE type = 'table' AND name = 'evaluations'"
+    ).fetchone()
+    if row is None or all(f"'{status}'" in row[0] for status in STATUSES):
+        return
+    create = next(
+        statement
+        for statement in _SCHEMA.split(";")
+        if "TABLE IF NOT EXISTS evaluations" in statement
+    )
+    db.execute("BEGIN IMMEDIATE")  # DDL opens no implicit transaction in sqlite3
+    try:
+        db.execute("ALTER TABLE evaluations RENAME TO evaluations_before")
+        db.execute(create)
+        db.execute("INSERT INTO evaluations SELECT * FROM evaluations_before")
+        db.execute("DROP TABLE evaluations_before")
+    except BaseException:
+        db.rollback()
+        raise
+    db.commit()
 
 
 def claim(db: sqlite3.Connection, config: dict[str, Any], results_key: str) -> None:
@@ -318,9 +361,10 @@ def add_designs(db: sqlite3.Connection, rows: Iterable[tuple[int, bool, list[flo
 
 
 def finished(db: sqlite3.Connection) -> dict[tuple[int, str], str]:
-    """(design_id, level) -> status of every evaluation stored, 'quarantined' included."""
+    """(design_id, level) -> status of every evaluation stored (:func:`status_of`),
+    'quarantined' included."""
     done = {
-        (r["design_id"], r["level"]): r["status"]
+        (r["design_id"], r["level"]): status_of(r["level"], r["status"])
         for r in db.execute("SELECT design_id, level, status FROM evaluations")
     }
     for r in db.execute("SELECT design_id, level FROM quarantine"):

@@ -7,18 +7,33 @@
 - The truth: the passive verdict when the ladder has a ``passive`` rung (a feeder is passive;
   the planning levels say whether any input could steer the part, necessary, not
   sufficient), else the top level.
-- Pruning: on the holdout (a random sample of the designs that climbed every rung), each
-  other level's verdict against the truth: precision = P(truth passes | passes the level),
-  recall = P(passes the level | truth passes), with Wilson 95% intervals. Recall is what
-  pruning risks: a design pruned although it works. ``ladder_pruning`` gives the same for the
-  ladder's own decision up to a level below the truth (passing it and all below).
-- Speed-up: the worker time the ladder spent (evaluations of designs that had passed every
-  lower rung) against the estimated time of evaluating every design at the truth level only
+- Pruning: each other level's verdict against the truth. Recall = P(passes the level |
+  truth passes) is what pruning risks (a design that works, thrown away); it is measured on
+  every design the truth passes that has the level's result, when no rung below the two
+  could have stopped it on the way (the passive rung first, planning rungs that do not
+  prune: the designs that work climb every rung, a census), else on the holdout (a random
+  sample of the designs that climbed every rung); ``recall_n`` and ``recall_basis`` say
+  which, and ``thrown_away`` names the designs that work that the level would have pruned
+  (not feasible there: infeasible, or ``unknown``: not found within the budget).
+  Precision = P(truth passes | passes the level) needs the failing designs' results, so it
+  is measured on the holdout (``n``). Wilson 95% intervals. ``ladder_pruning`` gives the
+  same on the holdout for the ladder's own decision up to a level below the truth (not
+  stopped there or below, by each rung's ``prunes``).
+- Speed-up: the worker time the ladder spent (evaluations of designs that no lower rung had
+  stopped) against the estimated time of evaluating every design at the truth level only
   (its mean evaluation time on the holdout times the number of designs), with a seeded
   bootstrap 95% interval over the holdout.
 - Pipelines (with a passive rung): every order of rungs that ends with the passive verdict,
-  replayed on the holdout: cost per design, recall of the designs that work, speed-up over
-  the passive rung alone; what decides which rungs a ladder should have.
+  its planning rungs pruning whatever is not feasible: cost per design on the holdout
+  (``n``: its failing designs' planning costs are known only there), recall of the designs
+  that work on the same basis as a level's recall (``recall_n``, ``recall_basis``), the
+  designs that work it would throw away, and the speed-up over the passive rung alone.
+- Thrown away (with the passive rung above a rung that prunes, as in ``paper.yaml``): the
+  designs outside the holdout that the ladder stopped before their verdict, and how many of
+  them work, estimated from the holdout designs it would have stopped (an estimate with a
+  Wilson 95% interval: those designs have no verdict).
+- Compile time is charged to no level: the workers load the kernels before their first job
+  (``job.warm_up``), the parent compiles them before the workers start.
 - Passive: verdicts (works / fails / undecided), the fraction of designs that work with its
   interval, drops, trials per verdict and drops per second of worker time.
 - Best designs: with a passive rung, the designs that work ranked by the lower bound of
@@ -91,12 +106,19 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
     status: dict[tuple[int, str], str] = {}
     wall: dict[tuple[int, str], float] = {}
     for r in db.execute("SELECT design_id, level, status, wall_time_s FROM evaluations"):
-        status[(r["design_id"], r["level"])] = r["status"]
+        status[(r["design_id"], r["level"])] = results_db.status_of(r["level"], r["status"])
         wall[(r["design_id"], r["level"])] = r["wall_time_s"]
     quarantined = [dict(r) for r in db.execute("SELECT * FROM quarantine ORDER BY design_id")]
+    prunes = _prunes(config.get("ladder", []))
 
     def passes_up_to(design_id: int, rung: int) -> bool:
         return all(status.get((design_id, ladder[k])) == "feasible" for k in range(rung + 1))
+
+    def kept_up_to(design_id: int, rung: int) -> bool:
+        """No rung up to ``rung`` stopped the design (outside the holdout)."""
+        return all(
+            _climbs(status.get((design_id, ladder[k])), prunes[ladder[k]]) for k in range(rung + 1)
+        )
 
     levels = []
     for rung, level in enumerate(ladder):
@@ -145,7 +167,9 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
     pruning, ladder_pruning = [], []
     speedup = None
     pipelines: list[dict[str, Any]] = []
+    thrown_away = None
     if truth_level is not None:
+        replay = _Replay(ladder, prunes, truth_level, holdout, status)
         judged = [d for d in holdout if (d, truth_level) in status]
         truth = {d: status[(d, truth_level)] == "feasible" for d in judged}
         for rung, level in enumerate(ladder):
@@ -154,13 +178,21 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
             own = [
                 (status[(d, level)] == "feasible", truth[d]) for d in judged if (d, level) in status
             ]
-            pruning.append({"level": level, **_confusion(own)})
+            pruning.append(
+                {
+                    "level": level,
+                    "prunes": prunes[level],
+                    **_confusion(own),
+                    **replay.recall([level]),
+                }
+            )
             if rung < ladder.index(truth_level):
-                cumulative = [(passes_up_to(d, rung), truth[d]) for d in judged]
+                cumulative = [(kept_up_to(d, rung), truth[d]) for d in judged]
                 ladder_pruning.append({"level": level, **_confusion(cumulative)})
-        speedup = _speedup(ladder, truth_level, designs, wall, passes_up_to, judged)
+        speedup = _speedup(ladder, truth_level, designs, wall, kept_up_to, judged)
         if truth_level == PASSIVE:
-            pipelines = _pipelines(ladder, holdout, status, wall)
+            pipelines = _pipelines(ladder, holdout, status, wall, replay)
+            thrown_away = _thrown_away(ladder, designs, holdout, status, kept_up_to)
 
     stored_verdicts = results_db.verdicts(db)
     passive = _passive_summary(ladder, holdout, status, wall, stored_verdicts)
@@ -184,6 +216,7 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
         "speedup": speedup,
         "passive": passive,
         "pipelines": pipelines,
+        "thrown_away": thrown_away,
         "best": best[:BEST_DESIGNS],
         "quarantined": quarantined,
     }
@@ -263,61 +296,133 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
     }
 
 
-def _pipelines(ladder, holdout, status, wall) -> list[dict[str, Any]]:
+def _prunes(rungs: list[dict[str, Any]]) -> dict[str, bool]:
+    """Level -> whether a design not shown feasible there stopped climbing (outside the
+    holdout), from the stored config: a planning rung's ``prunes`` (absent in a database
+    written before it existed, whose sweep pruned on every planning rejection: True); the
+    passive rung always stops a design that does not work."""
+    return {str(r["level"]): bool(r.get("prunes", True)) or r["level"] == PASSIVE for r in rungs}
+
+
+def _climbs(status: str | None, prunes: bool) -> bool:
+    """Whether a design with ``status`` at a rung that ``prunes`` (or not) went on up."""
+    return status == "feasible" or (status == "unknown" and not prunes)
+
+
+class _Replay:
+    """Which designs a recall rests on: for the levels ``needed`` (and the truth), every
+    design the truth passes that has all their results, when no rung below the highest of
+    them (the truth aside) could have stopped a design on its way up (each such rung does
+    not prune, so reaching them did not depend on their verdicts); else the holdout's."""
+
+    def __init__(self, ladder, prunes, truth_level, holdout, status):
+        self.ladder, self.prunes, self.truth = ladder, prunes, truth_level
+        self.holdout, self.status = holdout, status
+        self.designs = sorted({d for d, _ in status})
+
+    def census(self, needed: list[str]) -> bool:
+        top = max(self.ladder.index(level) for level in [*needed, self.truth])
+        return not any(self.prunes[level] for level in self.ladder[:top] if level != self.truth)
+
+    def recall(self, needed: list[str]) -> dict[str, Any]:
+        census = self.census(needed)
+        pool = self.designs if census else self.holdout
+        works = [
+            d
+            for d in pool
+            if self.status.get((d, self.truth)) == "feasible"
+            and all((d, level) in self.status for level in needed)
+        ]
+        lost = [d for d in works if any(self.status[(d, lv)] != "feasible" for lv in needed)]
+        ratio = _ratio(len(works) - len(lost), len(works))
+        return {
+            "recall": ratio["value"],
+            "recall_ci": ratio["ci"],
+            "recall_n": len(works),
+            "recall_basis": "every design" if census else "the holdout",
+            "thrown_away": lost,
+        }
+
+
+def _pipelines(ladder, holdout, status, wall, replay: _Replay) -> list[dict[str, Any]]:
     """What each pipeline would cost and keep: every ordered subset of the ladder's planning
-    rungs followed by the passive rung, replayed on the holdout designs evaluated at every
-    rung (their stored times and verdicts). A design pays for each rung it reaches and goes
-    on while it is feasible; cost is the mean worker seconds per design (seeded bootstrap 95%
-    interval), recall the fraction of the designs that work that reach the passive rung
-    (Wilson 95%), the speed-up is over the passive rung alone."""
+    rungs followed by the passive rung, each planning rung pruning what it does not show
+    feasible. Cost: replayed on the holdout designs evaluated at every rung (their stored
+    times), the mean worker seconds per design (seeded bootstrap 95% interval; ``n``
+    designs); a design pays for each rung it reaches. Recall: the fraction of the designs
+    that work that reach the passive rung, on :class:`_Replay`'s basis (Wilson 95%;
+    ``recall_n`` designs), with the ones it would throw away. The speed-up is over the
+    passive rung alone."""
     planning = [level for level in ladder if level != PASSIVE]
     full = [d for d in holdout if all((d, level) in wall for level in ladder)]
-    if not full:
-        return []
-    works = {d: status[(d, PASSIVE)] == "feasible" for d in full}
     rng = np.random.default_rng(0)
-    resample = rng.integers(0, len(full), (BOOTSTRAP_SAMPLES, len(full)))
+    resample = rng.integers(0, len(full), (BOOTSTRAP_SAMPLES, len(full))) if full else None
     out = []
     alone = None
     for mask in range(2 ** len(planning)):
         rungs = [level for k, level in enumerate(planning) if mask >> k & 1] + [PASSIVE]
-        costs, reached = [], []
+        costs = []
         for d in full:
-            cost, alive = 0.0, True
+            cost = 0.0
             for level in rungs:
-                if not alive:
-                    break
                 cost += wall[(d, level)]
-                alive = status[(d, level)] == "feasible" if level != PASSIVE else alive
+                if status[(d, level)] != "feasible":
+                    break
             costs.append(cost)
-            reached.append(all(status[(d, level)] == "feasible" for level in rungs[:-1]))
-        samples = np.array(costs)
-        means = samples[resample].mean(1)
-        kept = sum(1 for d, r in zip(full, reached, strict=True) if r and works[d])
-        recall = _ratio(kept, sum(works.values()))
-        mean = float(samples.mean())
+        mean, ci = None, [None, None]
+        if resample is not None:
+            samples = np.array(costs)
+            means = samples[resample].mean(1)
+            mean = float(samples.mean())
+            ci = [float(np.quantile(means, 0.025)), float(np.quantile(means, 0.975))]
         if mask == 0:
             alone = mean
         out.append(
             {
                 "rungs": rungs,
                 "cost_s": mean,
-                "cost_ci": [float(np.quantile(means, 0.025)), float(np.quantile(means, 0.975))],
-                "recall": recall["value"],
-                "recall_ci": recall["ci"],
-                "speedup": alone / mean if alone and mean > 0 else None,
+                "cost_ci": ci,
                 "n": len(full),
+                **replay.recall(rungs[:-1]),
+                "speedup": alone / mean if alone and mean else None,
             }
         )
     return out
 
 
-def _speedup(ladder, truth_level, designs, wall, passes_up_to, judged) -> dict[str, Any] | None:
+def _thrown_away(ladder, designs, holdout, status, kept_up_to) -> dict[str, Any] | None:
+    """With the passive rung above a rung that stopped designs: the designs outside the
+    holdout stopped before their verdict (``pruned``), and how many of them work, estimated
+    as ``pruned`` times the fraction that work of the holdout designs the ladder would have
+    stopped there (Wilson 95% interval): those designs have no verdict to count."""
+    top = ladder.index(PASSIVE)
+    if top == 0:
+        return None
+
+    def stopped(d: int) -> bool:
+        return any((d, ladder[k]) in status and not kept_up_to(d, k) for k in range(top))
+
+    inside = set(holdout)
+    pruned = [d for d in designs if d not in inside and stopped(d)]
+    sample = [d for d in holdout if (d, PASSIVE) in status and stopped(d)]
+    working = [d for d in sample if status[(d, PASSIVE)] == "feasible"]
+    low, high = wilson_interval(len(working), len(sample))
+    share = len(working) / len(sample) if sample else None
+    return {
+        "pruned": len(pruned),
+        "holdout_pruned": len(sample),
+        "holdout_pruned_working": working,
+        "estimate": None if share is None else share * len(pruned),
+        "ci": [low * len(pruned), high * len(pruned)] if sample else [None, None],
+    }
+
+
+def _speedup(ladder, truth_level, designs, wall, kept_up_to, judged) -> dict[str, Any] | None:
     """The ladder's worker time against every design at the truth level only (see module)."""
     needed = 0.0
     for (d, level), t in wall.items():
         rung = ladder.index(level)
-        if rung == 0 or passes_up_to(d, rung - 1):
+        if rung == 0 or kept_up_to(d, rung - 1):
             needed += t
     samples = np.array([wall[(d, truth_level)] for d in judged])
     if len(samples) == 0 or needed <= 0.0:
@@ -343,23 +448,28 @@ def summary_table(summary: dict[str, Any]) -> str:
     lines = [
         f"sweep '{summary['name']}': {summary['designs']} designs, "
         f"{summary['holdout']} in the holdout",
-        f"{'level':<10} {'evaluated':>9} {'feasible':>8} {'infeas.':>7} {'degen.':>6} "
-        f"{'quarant.':>8} {'survivors':>9} {'designs/s':>9}",
+        f"{'level':<10} {'evaluated':>9} {'feasible':>8} {'infeas.':>7} {'unknown':>7} "
+        f"{'degen.':>6} {'quarant.':>8} {'survivors':>9} {'designs/s':>9}",
     ]
     for lv in summary["levels"]:
         rate = lv["designs_per_s"]
         lines.append(
             f"{lv['level']:<10} {lv['evaluated']:>9} {lv['feasible']:>8} {lv['infeasible']:>7} "
-            f"{lv['degenerate']:>6} {lv['quarantined']:>8} {lv['survivors']:>9} "
-            f"{(f'{rate:.2f}' if rate else '-'):>9}"
+            f"{lv.get('unknown', 0):>7} {lv['degenerate']:>6} {lv['quarantined']:>8} "
+            f"{lv['survivors']:>9} {(f'{rate:.2f}' if rate else '-'):>9}"
         )
     for p in summary["pruning"]:
-        if p["n"]:
+        if p["n"] or p.get("recall_n"):
             lines.append(
-                f"pruning by {p['level']} (holdout n={p['n']}): precision {_pct(p['precision'])} "
-                f"[{_pct(p['precision_ci'][0])}, {_pct(p['precision_ci'][1])}], "
-                f"recall {_pct(p['recall'])} "
-                f"[{_pct(p['recall_ci'][0])}, {_pct(p['recall_ci'][1])}]"
+                f"pruning by {p['level']}: precision {_pct(p['precision'])} "
+                f"[{_pct(p['precision_ci'][0])}, {_pct(p['precision_ci'][1])}] "
+                f"(holdout n={p['n']}), recall {_pct(p['recall'])} "
+                f"[{_pct(p['recall_ci'][0])}, {_pct(p['recall_ci'][1])}] {_recall_basis(p)}"
+            )
+        if p.get("thrown_away"):
+            lines.append(
+                f"designs that work that {p['level']} would have thrown away: "
+                f"{', '.join(str(d) for d in p['thrown_away'])}"
             )
     s = summary["speedup"]
     if s:
@@ -378,10 +488,18 @@ def summary_table(summary: dict[str, Any]) -> str:
             f"{p['drops_per_s']:.0f} drops/s"
         )
     for pipe in summary.get("pipelines") or []:
+        cost = "-" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f}"
+        speedup = "-" if pipe["speedup"] is None else f"{pipe['speedup']:.2f}x"
+        lost = pipe.get("thrown_away") or []
         lines.append(
-            f"pipeline {' -> '.join(pipe['rungs'])}: {pipe['cost_s']:.2f} s/design, "
-            f"recall {_pct(pipe['recall'])}, speed-up {pipe['speedup']:.2f}x (n={pipe['n']})"
+            f"pipeline {' -> '.join(pipe['rungs'])}: {cost} s/design (holdout n={pipe['n']}), "
+            f"recall {_pct(pipe['recall'])} [{_pct(pipe['recall_ci'][0])}, "
+            f"{_pct(pipe['recall_ci'][1])}] {_recall_basis(pipe)}, speed-up {speedup}"
+            + (f"; would throw away {', '.join(str(d) for d in lost)}" if lost else "")
         )
+    lost = summary.get("thrown_away")
+    if lost:
+        lines.append(thrown_away_sentence(lost))
     for b in summary["best"][:3]:
         exit_time = "-" if b["exit_time_s"] is None else f"{b['exit_time_s']:.2f} s"
         if "verdict" in b:
@@ -395,6 +513,34 @@ def summary_table(summary: dict[str, Any]) -> str:
     for q in summary["quarantined"]:
         lines.append(f"quarantined: design {q['design_id']} at {q['level']}: {q['reason']}")
     return "\n".join(lines)
+
+
+def _recall_basis(row: dict[str, Any]) -> str:
+    """On which designs a recall rests: '(k of n designs that work, <basis>)'."""
+    n = row.get("recall_n")
+    if n is None:  # a summary written before recall_n existed: the holdout's
+        return "(the holdout)"
+    kept = n - len(row.get("thrown_away") or [])
+    return f"({kept} of {n} that work, {row.get('recall_basis', 'the holdout')})"
+
+
+def thrown_away_sentence(lost: dict[str, Any]) -> str:
+    """What the ladder's pruning before the verdict threw away (``summary['thrown_away']``),
+    as one sentence that says the count of working designs is an estimate."""
+    working = lost.get("holdout_pruned_working") or []
+    head = (
+        f"the ladder stopped {lost['pruned']} designs outside the holdout before their passive "
+        "verdict"
+    )
+    if lost.get("estimate") is None:
+        return f"{head}; how many of them work is not estimated (no holdout design was stopped)"
+    low, high = lost["ci"]
+    return (
+        f"{head}; an estimated {lost['estimate']:.1f} [{low:.1f}, {high:.1f}] of them work "
+        f"(an estimate from the holdout: {len(working)} of the {lost['holdout_pruned']} "
+        "holdout designs it would have stopped work"
+        + (f": {', '.join(str(d) for d in working)})" if working else ")")
+    )
 
 
 def _pct(x: float | None) -> str:
