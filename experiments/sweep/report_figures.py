@@ -267,6 +267,9 @@ def pruning_title(summary: dict, ladder: Sequence[str]) -> str:
     truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
     n = summary.get("holdout")
     on = f"the {n} holdout designs" if isinstance(n, int) else "the holdout"
+    rows = summary.get("pruning") or []
+    if any(row.get("recall_basis") == "every design" for row in rows):
+        return f"each level's verdict vs {truth}'s: precision on {on}, recall on every design"
     return f"each level's verdict vs {truth}'s, on {on}"
 
 
@@ -307,7 +310,11 @@ def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
             else:  # above the whisker, clear of it
                 top = high if high is not None else value
                 ax.text(k + offset, top + 0.03, f"{value:.2f}", ha="center", fontsize=9)
-    labels = [f"{row.get('level', '?')}\n(n = {cell(row.get('n'))})" for row in rows]
+    labels = [
+        f"{row.get('level', '?')}\n(n = {cell(row.get('n'))}"
+        + (f", recall n = {cell(row['recall_n'])})" if "recall_n" in row else ")")
+        for row in rows
+    ]
     ax.set_xticks(range(len(rows)), labels, fontsize=10)
     ax.set_xlim(-0.6, len(rows) - 0.4)
     ax.set_ylim(0, 1.25)

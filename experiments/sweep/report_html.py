@@ -35,8 +35,24 @@ def _speedup_text(speedup: dict | None) -> str:
 
 
 def _pruning_table(rows: list[dict]) -> str:
+    """Each level's precision on the holdout (``n``, its confusion counts) and its recall on
+    the designs that work it rests on (``recall_n``, which designs; a summary written before
+    those existed: the holdout's)."""
     return html_table(
-        ["level", "n", "tp", "fp", "fn", "tn", "precision", "95% CI", "recall", "95% CI"],
+        [
+            "level",
+            "holdout n",
+            "tp",
+            "fp",
+            "fn",
+            "tn",
+            "precision",
+            "95% CI",
+            "recall",
+            "95% CI",
+            "designs that work",
+            "of",
+        ],
         [
             [
                 str(row.get("level", "")),
@@ -45,10 +61,67 @@ def _pruning_table(rows: list[dict]) -> str:
                 interval(row.get("precision_ci")),
                 cell(row.get("recall"), ".3f"),
                 interval(row.get("recall_ci")),
+                cell(row.get("recall_n", row.get("tp", 0) + row.get("fn", 0))),
+                str(row.get("recall_basis", "the holdout")),
             ]
             for row in rows
         ],
-        text_columns=(0,),
+        text_columns=(0, 11),
+    )
+
+
+def _ids(designs: list) -> str:
+    return ", ".join(str(d) for d in designs)
+
+
+def thrown_away_parts(summary: dict) -> list[str]:
+    """The designs that work that a rung or a pipeline would have thrown away (by id), and,
+    for a ladder that prunes before the verdict, how many working designs it threw away: an
+    estimate from the holdout, since those designs have no verdict."""
+    e = html.escape
+    truth = str(summary.get("truth") or "the top level")
+    parts = [f"<h3>Designs that work ({e(truth)}) that pruning would have thrown away</h3>"]
+    lines = []
+    for row in summary.get("pruning") or []:
+        lost = row.get("thrown_away")
+        if lost is None:  # a summary written before the list existed
+            continue
+        what = _ids(lost) if lost else "none"
+        lines.append(
+            f"{row.get('level')}{' (prunes)' if row.get('prunes') else ''}: {what} "
+            f"(of {cell(row.get('recall_n'))} designs that work, {row.get('recall_basis')})"
+        )
+    for pipe in summary.get("pipelines") or []:
+        lost = pipe.get("thrown_away")
+        if lost and len(pipe.get("rungs") or []) > 2:  # one rung's are listed above
+            lines.append(f"pipeline {' → '.join(pipe['rungs'])}: {_ids(lost)}")
+    if not lines:
+        return []
+    parts.append("<ul>" + "".join(f"<li>{e(line)}</li>" for line in lines) + "</ul>")
+    parts.append(
+        '<p class="note">A planning rung throws a design away when its planners do not show it '
+        "feasible: not found within the budget (unknown) proves nothing, so a rung prunes on it "
+        "only when its config says <code>prunes: true</code>.</p>"
+    )
+    lost = summary.get("thrown_away")
+    if lost:
+        parts.append(f"<p>{e(_thrown_away_text(lost))}</p>")
+    return parts
+
+
+def _thrown_away_text(lost: dict) -> str:
+    working = lost.get("holdout_pruned_working") or []
+    head = (
+        f"The ladder stopped {cell(lost.get('pruned'))} designs outside the holdout before "
+        "their passive verdict, so they have none."
+    )
+    if lost.get("estimate") is None:
+        return head + " How many of them work is not estimated: no holdout design was stopped."
+    return (
+        f"{head} An estimated {cell(lost.get('estimate'), '.1f')} of them work (95% CI "
+        f"{interval(lost.get('ci'), '.1f')}): an estimate from the holdout, where "
+        f"{len(working)} of the {cell(lost.get('holdout_pruned'))} designs the ladder would "
+        f"have stopped work{': ' + _ids(working) if working else ''}."
     )
 
 
@@ -115,6 +188,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
             cell(row.get("evaluated")),
             cell(row.get("feasible")),
             cell(row.get("infeasible")),
+            cell(row.get("unknown")),
             cell(row.get("degenerate")),
             cell(row.get("quarantined")),
             cell(row.get("survivors")),
@@ -132,6 +206,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
                 "evaluated",
                 "feasible",
                 "infeasible",
+                "unknown",
                 "degenerate",
                 "quarantined",
                 "survivors",
@@ -144,8 +219,10 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         )
     )
     parts.append(
-        '<p class="note">Survivors: designs that passed this level and every level below it. '
-        "Wall time: the sum over the level's evaluations, in their workers.</p>"
+        '<p class="note">Unknown: not found within the planning budget, which proves nothing '
+        "(a sampling planner). Survivors: designs that passed this level and every level below "
+        "it. Wall time: the sum over the level's evaluations, in their workers; the workers "
+        "load the compiled kernels before their first job, so no level is charged for it.</p>"
     )
     parts.append(figure_html(figures, "survivors", "survivors per level"))
 
@@ -156,18 +233,25 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     parts.append(f"<p>{e(_speedup_text(summary.get('speedup')))}</p>")
 
     truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
-    parts.append(f"<h2>Pruning (vs {e(truth)}, on the holdout)</h2>")
+    parts.append(f"<h2>Pruning (vs {e(truth)})</h2>")
     pruning = list(summary.get("pruning") or [])
     if pruning:
-        parts.append(f"<p>Each other level's own verdict against {e(truth)}'s:</p>")
+        parts.append(
+            f"<p>Each other level's own verdict against {e(truth)}'s. Precision needs the "
+            "failing designs' results: on the holdout (holdout n). Recall, what pruning risks, "
+            "rests on the designs that work counted in its row: every design, when none could "
+            "have been stopped on its way to the level (the passive rung first, planning rungs "
+            "that do not prune), else the holdout's.</p>"
+        )
         parts.append(_pruning_table(pruning))
     else:
-        parts.append("<p>No holdout designs: the pruning is not measured.</p>")
+        parts.append("<p>No level beside the truth: the pruning is not measured.</p>")
+    parts += thrown_away_parts(summary)
     cumulative = list(summary.get("ladder_pruning") or [])  # optional: the ladder so far
     if cumulative:
         parts.append(
-            "<p>The ladder up to each level (passed it and every level below it) against "
-            f"{e(truth)}'s verdict:</p>"
+            "<p>The ladder up to each level (not stopped there or below it, by each rung's "
+            f"<code>prunes</code>) against {e(truth)}'s verdict, on the holdout:</p>"
         )
         parts.append(_pruning_table(cumulative))
     parts.append(figure_html(figures, "pruning", "precision and recall per level"))

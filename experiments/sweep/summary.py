@@ -369,7 +369,8 @@ def _pipelines(ladder, holdout, status, wall, replay: _Replay) -> list[dict[str,
                 if status[(d, level)] != "feasible":
                     break
             costs.append(cost)
-        mean, ci = None, [None, None]
+        mean: float | None = None
+        ci: list[float | None] = [None, None]
         if resample is not None:
             samples = np.array(costs)
             means = samples[resample].mean(1)

@@ -17,6 +17,7 @@ from sweep_fixtures import TINY, fake_result, fake_verdict
 from experiments.sweep import results_db
 from experiments.sweep.config import ConfigError, config_from_dict, load_config
 from experiments.sweep.ladder import climbs, pending_jobs
+from experiments.sweep.report_html import thrown_away_parts
 from experiments.sweep.summary import summarise, summary_table
 from feeders.halton import halton_points
 
@@ -152,6 +153,8 @@ def test_recall_rests_on_every_design_that_works_and_names_the_ones_a_rung_throw
     text = summary_table(summary)
     assert f"designs that work that kinematic would have thrown away: {working[2]}, " in text
     assert "(2 of 4 that work, every design)" in text
+    page = "".join(thrown_away_parts(summary))
+    assert f"kinematic: {working[2]}, {working[3]} (of 4 designs that work, every design)" in page
 
 
 def test_a_ladder_that_prunes_below_the_verdict_measures_recall_on_the_holdout_only(
@@ -182,6 +185,7 @@ def test_a_ladder_that_prunes_below_the_verdict_measures_recall_on_the_holdout_o
     low, high = lost["ci"]
     assert 0.0 < low < 2.0 < high < 4.0
     assert "an estimate from the holdout" in summary_table(summary)
+    assert "an estimate from the holdout" in "".join(thrown_away_parts(summary))
 
 
 def test_a_database_of_an_older_version_summarises_and_resumes(tmp_path: Path) -> None:
