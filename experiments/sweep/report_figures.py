@@ -269,7 +269,10 @@ def pruning_title(summary: dict, ladder: Sequence[str]) -> str:
     on = f"the {n} holdout designs" if isinstance(n, int) else "the holdout"
     rows = summary.get("pruning") or []
     if any(row.get("recall_basis") == "every design" for row in rows):
-        return f"each level's verdict vs {truth}'s: precision on {on}, recall on every design"
+        return (
+            f"each level's verdict vs {truth}'s: precision on {on}, "
+            "recall on every design that works"
+        )
     return f"each level's verdict vs {truth}'s, on {on}"
 
 
