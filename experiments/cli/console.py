@@ -84,8 +84,15 @@ def set_ompl_logging(verbose: bool) -> None:
 
 
 def exit_now(code: int) -> None:
-    """Flush our streams and end the process without the interpreter's exit hooks."""
+    """Flush our streams and end the process without the interpreter's exit hooks, after
+    releasing what multiprocessing releases at exit: its finalizers of priority 0 and above
+    unlink the named semaphores of spawn-context pools and queues still alive (an interrupt
+    can land while a pool shuts down), which the resource tracker would otherwise report as
+    leaked, on the terminal, after the command's last line."""
     try:
+        mp_util = sys.modules.get("multiprocessing.util")
+        if mp_util is not None:
+            mp_util._run_finalizers(0)  # what its atexit hook runs first
         sys.stdout.flush()
         sys.stderr.flush()
     finally:
