@@ -202,28 +202,46 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
     )
     pipelines = list(summary.get("pipelines") or [])
     if pipelines:
-        parts.append("<h3>Which rungs are worth climbing (replayed on the holdout)</h3>")
+        parts.append("<h3>Which rungs are worth climbing</h3>")
         parts.append(
             '<p class="note">Each order of the ladder\'s planning rungs before the passive '
-            "verdict: worker seconds per design, the fraction of the designs that work which it "
-            "would keep (recall), and its speed-up over the passive verdict alone.</p>"
+            "verdict, each rung pruning what it does not show feasible: worker seconds per "
+            "design, replayed on the holdout designs evaluated at every rung (holdout n: the "
+            "failing designs' planning costs are known only there); the fraction of the "
+            "designs that work which it would keep (recall), on the designs that work counted "
+            "(every design when none could have been stopped on its way, else the holdout's); "
+            "and its speed-up over the passive verdict alone.</p>"
         )
         parts.append(
             html_table(
-                ["pipeline", "s/design", "95% CI", "recall", "95% CI", "speed-up", "designs"],
+                [
+                    "pipeline",
+                    "s/design",
+                    "95% CI",
+                    "holdout n",
+                    "recall",
+                    "95% CI",
+                    "designs that work",
+                    "of",
+                    "would throw away",
+                    "speed-up",
+                ],
                 [
                     [
                         " → ".join(str(r) for r in p.get("rungs") or []),
                         cell(p.get("cost_s"), ".3g"),
                         interval(p.get("cost_ci")),
+                        cell(p.get("n")),
                         cell(p.get("recall"), ".2f"),
                         interval(p.get("recall_ci")),
+                        cell(p.get("recall_n")),
+                        str(p.get("recall_basis", "the holdout")),
+                        ", ".join(str(d) for d in p.get("thrown_away") or []) or DASH,
                         cell(p.get("speedup"), ".2f"),
-                        cell(p.get("n")),
                     ]
                     for p in pipelines
                 ],
-                text_columns=(0,),
+                text_columns=(0, 7, 8),
             )
         )
     best = with_verdicts(summary)
