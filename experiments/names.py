@@ -13,8 +13,12 @@ LEVEL_NAMES = ("geometric", "kinematic", "dynamic")
 # The passive rung of a sweep: the design's verdict (experiments.drop.verdict), success
 # probability over perturbed passive drops; not a planning level, so not in validity.LEVELS.
 PASSIVE = "passive"
+# The necessary-conditions rung (validity.necessary): exact geometric tests that a design which
+# fails them cannot work; cheap (about 7 ms a design), so it may stand before the verdict and
+# prune without losing a design that works (docs/necessary.md).
+NECESSARY = "necessary"
 # What a rung of a sweep's ladder can be.
-RUNG_NAMES = (*LEVEL_NAMES, PASSIVE)
+RUNG_NAMES = (*LEVEL_NAMES, PASSIVE, NECESSARY)
 # planners.registry.PLANNERS, in its order.
 PLANNER_NAMES = ("rrt", "kpiece", "est")
 # feeders.design.PRESETS: the paper's designs (Figs. 4-9, Table 3).

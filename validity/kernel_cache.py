@@ -99,14 +99,23 @@ def kernel_counts() -> tuple[int, int]:
     return misses, hits
 
 
+NECESSARY = "necessary"  # the necessary-condition tests' kernels (validity.necessary)
+
+
 def exercise(level_name: str) -> None:
     """Call every entry of the level ``level_name`` (its validity, clearance and runs) for a
-    few steps on the table3 feeder, so each of its kernels is compiled or loaded."""
+    few steps on the table3 feeder, so each of its kernels is compiled or loaded; for
+    ``necessary``, the necessary-condition tests on it."""
     from feeders.design import preset
     from feeders.feeder import build_feeder
     from validity import LEVELS
 
     scene = build_feeder(preset("table3"), name="table3")
+    if level_name == NECESSARY:
+        from validity.necessary import necessary_conditions
+
+        necessary_conditions(scene)
+        return
     level = LEVELS[level_name](scene)
     state = level.state_of_pose(next(iter(scene.starts.values())))
     low, high = level.control_bounds()
@@ -132,14 +141,15 @@ def compile_kernels(
     on_level: Callable[[str], object] | None = None,
 ) -> KernelLoad:
     """Compile, or load from numba's cache, every kernel of ``levels`` (names of
-    ``validity.LEVELS``) in this process, so processes started afterwards on this machine load
-    them from the cache. ``on_first_compile()`` is called once, when the first kernel missing
-    from the cache starts compiling (the moment to tell a user why they wait);
-    ``on_level(name)`` after each level's kernels are ready (a progress bar's step)."""
+    ``validity.LEVELS``, or ``necessary``) in this process, so processes started afterwards
+    on this machine load them from the cache. ``on_first_compile()`` is called once, when
+    the first kernel missing from the cache starts compiling (the moment to tell a user why
+    they wait); ``on_level(name)`` after each level's kernels are ready (a progress bar's
+    step)."""
     chosen = tuple(dict.fromkeys(levels))
     from validity import LEVELS
 
-    unknown = [name for name in chosen if name not in LEVELS]
+    unknown = [name for name in chosen if name not in LEVELS and name != NECESSARY]
     if unknown:
         raise ValueError(f"unknown level {unknown[0]!r}; levels: {', '.join(LEVELS)}")
     start = time.perf_counter()

@@ -10,7 +10,7 @@ import sys
 from collections.abc import Iterable
 from typing import Any
 
-from experiments.names import LEVEL_NAMES, PASSIVE
+from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE
 
 COMPILING = "partfeeder: compiling the numba kernels once for this machine (later runs load them)"
 COMPILING_BAR = "compiling the numba kernels once for this machine"
@@ -20,7 +20,7 @@ def kernel_levels(rungs: Iterable[str]) -> list[str]:
     """The levels whose kernels ``rungs`` (level names or ``passive``) run: the passive rung
     drops the part with the dynamic level."""
     levels = {"dynamic" if rung == PASSIVE else rung for rung in rungs}
-    return [name for name in LEVEL_NAMES if name in levels]
+    return [name for name in (*LEVEL_NAMES, NECESSARY) if name in levels]
 
 
 def compile_once(rungs: Iterable[str]) -> None:

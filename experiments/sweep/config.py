@@ -41,7 +41,7 @@ from pathlib import Path
 from typing import Any
 
 from experiments.config_files import resolve_config
-from experiments.names import LEVEL_NAMES, PASSIVE, PLANNER_NAMES, RUNG_NAMES
+from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE, PLANNER_NAMES, RUNG_NAMES
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -89,6 +89,8 @@ class Rung:
                 "verdict": dict(self.verdict),
                 "perturbations": dict(self.perturbations),
             }
+        if self.level == NECESSARY:
+            return {"level": self.level, "perturbations": dict(self.perturbations)}
         budget: dict[str, Any] = {"time": self.time_s}
         if self.propagations is not None:
             budget["propagations"] = self.propagations
@@ -175,9 +177,32 @@ WILSON_KEYS = {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
 VERDICT_KEYS = WILSON_KEYS | {"rule", "works_p", "fails_p", "error"}
 
 
+NECESSARY_NOISE = ("tolerance", "position", "yaw")  # what the necessary tests allow for
+
+
+def _necessary_rung(spec: Any, field_name: str) -> Rung:
+    """The necessary-conditions rung: the made feeders' tolerance and the entry's position
+    and yaw perturbations it allows for (default: the verdict's, ``Perturbations()``). It
+    prunes: its tests fail only designs that cannot work (docs/necessary.md)."""
+    from experiments.drop.perturbations import Perturbations
+
+    spec = mapping_field(spec, field_name, {"level", "perturbations"})
+    noise = mapping_field(
+        spec.get("perturbations", {}) or {}, f"{field_name}.perturbations", set(NECESSARY_NOISE)
+    )
+    try:
+        perturbations = Perturbations(**noise)
+    except ValueError as exc:
+        raise ConfigError(f"{field_name}.{exc}") from None
+    kept = {k: getattr(perturbations, k) for k in NECESSARY_NOISE}
+    return Rung(NECESSARY, (), perturbations=kept, prunes=True)
+
+
 def _rung(spec: Any, field_name: str) -> Rung:
     if isinstance(spec, dict) and spec.get("level") == PASSIVE:
         return _passive_rung(spec, field_name)
+    if isinstance(spec, dict) and spec.get("level") == NECESSARY:
+        return _necessary_rung(spec, field_name)
     spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget", "prunes"})
     level = spec.get("level")
     if not isinstance(level, str) or level not in LEVEL_NAMES:
@@ -254,11 +279,11 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
     levels = [r.level for r in ladder]
     if len(set(levels)) != len(levels):
         raise ConfigError(f"ladder: {levels} has a level twice")
-    order = [LEVEL_NAMES.index(level) for level in levels if level != PASSIVE]
+    order = [LEVEL_NAMES.index(level) for level in levels if level in LEVEL_NAMES]
     if order != sorted(order):
         raise ConfigError(
             f"ladder: {levels} must climb the planning levels in order {', '.join(LEVEL_NAMES)} "
-            f"(the {PASSIVE} rung may stand anywhere)"
+            f"(the {PASSIVE} and {NECESSARY} rungs may stand anywhere)"
         )
     holdout = mapping_field(data.get("holdout", {}) or {}, "holdout", {"fraction", "seed"})
     fraction = number_field(holdout.get("fraction", 0.0), "holdout.fraction", 0.0, 1.0)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
-from experiments.names import PASSIVE
+from experiments.names import NECESSARY, PASSIVE
 from experiments.sweep.results_db import SAMPLED_LEVELS
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
@@ -104,10 +104,10 @@ def warm_up(levels: tuple[str, ...]) -> None:
     from experiments.drop import verdict  # noqa: F401  (imported here for its load time)
     from validity.kernel_cache import compile_kernels
 
-    if any(level != PASSIVE for level in levels):
+    if any(level not in (PASSIVE, NECESSARY) for level in levels):
         from planners import benchmark  # noqa: F401
     kernels = {"dynamic" if level == PASSIVE else level for level in levels}
-    compile_kernels(level for level in SAMPLED_LEVELS if level in kernels)
+    compile_kernels(level for level in (*SAMPLED_LEVELS, NECESSARY) if level in kernels)
 
 
 def evaluate_design(job: SweepJob) -> dict[str, Any]:
@@ -116,7 +116,40 @@ def evaluate_design(job: SweepJob) -> dict[str, Any]:
     job = job_from_dict(dict(job))
     if job["level"] == PASSIVE:
         return evaluate_passive(job)
+    if job["level"] == NECESSARY:
+        return evaluate_necessary(job)
     return evaluate_planning(job)
+
+
+def evaluate_necessary(job: SweepJob) -> dict[str, Any]:
+    """Can the design work at all? :func:`validity.necessary.necessary_conditions` of its
+    feeder (the sweep's part and feeder options), for feeders made to the rung's tolerance
+    and entries perturbed by its position and yaw: "infeasible", with the failed test as the
+    reason, only when no drop can succeed (no design that works is pruned:
+    docs/necessary.md); else "feasible"."""
+    from experiments.drop.perturbations import Perturbations
+    from validity.necessary import necessary_conditions
+
+    t0 = time.perf_counter()
+    result = _new_result(job)
+    noise = Perturbations(**job["perturbations"])
+    try:
+        scene = build_feeder(
+            DesignParameters.from_vector([float(v) for v in job["values"]]),
+            name=f"design {int(job['design_id'])}",
+            **environment_from_dict(job["feeder"]),
+        )
+    except DegenerateDesign as exc:
+        result["status"] = "degenerate"
+        result["reason"] = exc.reason
+        result["wall_time_s"] = time.perf_counter() - t0
+        return result
+    verdict = necessary_conditions(scene, noise.tolerance, position=noise.position, yaw=noise.yaw)
+    result["status"] = "feasible" if verdict.passes else "infeasible"
+    if not verdict.passes:
+        result["reason"] = f"fails the necessary {verdict.failed} test"
+    result["wall_time_s"] = time.perf_counter() - t0
+    return result
 
 
 def _new_result(job: SweepJob) -> dict[str, Any]:

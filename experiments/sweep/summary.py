@@ -52,7 +52,7 @@ from typing import Any
 
 import numpy as np
 
-from experiments.names import PASSIVE
+from experiments.names import NECESSARY, PASSIVE
 from experiments.proportions import wilson_interval
 from experiments.sweep import results_db
 from feeders.design import PARAMETER_NAMES
@@ -274,9 +274,17 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
         return None
     evaluated = [d for (d, level) in status if level == PASSIVE]
     decisions = {d: stored[d]["decision"] for d in evaluated if d in stored}
-    first = ladder[0] == PASSIVE
-    basis = evaluated if first else [d for d in holdout if (d, PASSIVE) in status]
-    works = sum(1 for d in basis if status[(d, PASSIVE)] == "feasible")
+    # first, or after sound rungs only: every design has a verdict or a proof that it fails
+    first = all(level in SOUND for level in ladder[: ladder.index(PASSIVE)])
+    proven = sorted(
+        {
+            d
+            for (d, level), s in status.items()
+            if level in SOUND and s == "infeasible" and (d, PASSIVE) not in status
+        }
+    )
+    basis = [*evaluated, *proven] if first else [d for d in holdout if (d, PASSIVE) in status]
+    works = sum(1 for d in basis if status.get((d, PASSIVE)) == "feasible")
     fraction = _ratio(works, len(basis))
     trials = [stored[d]["drops"] for d in decisions]
     seconds = sum(wall[(d, PASSIVE)] for d in evaluated)
@@ -294,6 +302,12 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
         "drops_per_s": drops / seconds if seconds > 0 else None,
         "target": next(iter(stored.values()))["target"] if stored else None,
     }
+
+
+# Rungs whose "infeasible" is a proof that the design cannot work (docs/necessary.md): a design
+# they stop is a failing design, not a lost one, so they neither hide a design that works from
+# a recall nor throw one away.
+SOUND = (NECESSARY,)
 
 
 def _prunes(rungs: list[dict[str, Any]]) -> dict[str, bool]:
@@ -322,7 +336,11 @@ class _Replay:
 
     def census(self, needed: list[str]) -> bool:
         top = max(self.ladder.index(level) for level in [*needed, self.truth])
-        return not any(self.prunes[level] for level in self.ladder[:top] if level != self.truth)
+        return not any(
+            self.prunes[level]
+            for level in self.ladder[:top]
+            if level != self.truth and level not in SOUND
+        )
 
     def recall(self, needed: list[str]) -> dict[str, Any]:
         census = self.census(needed)
@@ -397,11 +415,16 @@ def _thrown_away(ladder, designs, holdout, status, kept_up_to) -> dict[str, Any]
     as ``pruned`` times the fraction that work of the holdout designs the ladder would have
     stopped there (Wilson 95% interval): those designs have no verdict to count."""
     top = ladder.index(PASSIVE)
-    if top == 0:
-        return None
+    if all(level in SOUND for level in ladder[:top]):
+        return None  # nothing below the verdict, or only proofs
 
     def stopped(d: int) -> bool:
-        return any((d, ladder[k]) in status and not kept_up_to(d, k) for k in range(top))
+        """Stopped below the verdict by a rung that is not sound (a sound rung's stop is a
+        proof that the design fails)."""
+        for k in range(top):
+            if (d, ladder[k]) in status and not kept_up_to(d, k):
+                return ladder[k] not in SOUND
+        return False
 
     inside = set(holdout)
     pruned = [d for d in designs if d not in inside and stopped(d)]
