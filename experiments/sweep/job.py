@@ -23,6 +23,7 @@ from feeders.scene_yaml import environment_from_dict
 
 if TYPE_CHECKING:
     from experiments.sweep.config import SweepConfig
+    from feeders.scene import Scene
 
 
 class SweepJob(TypedDict):
@@ -133,8 +134,23 @@ def evaluate_necessary(job: SweepJob) -> dict[str, Any]:
     t0 = time.perf_counter()
     result = _new_result(job)
     noise = Perturbations(**job["perturbations"])
+    scene = _scene_or_degenerate(job, result, t0)
+    if scene is None:
+        return result
+    verdict = necessary_conditions(scene, noise.tolerance, position=noise.position, yaw=noise.yaw)
+    result["status"] = "feasible" if verdict.passes else "infeasible"
+    if not verdict.passes:
+        result["reason"] = f"fails the necessary {verdict.failed} test"
+    result["wall_time_s"] = time.perf_counter() - t0
+    return result
+
+
+def _scene_or_degenerate(job: SweepJob, result: dict[str, Any], t0: float) -> Scene | None:
+    """The job's feeder (its 12 values, the sweep's part and feeder options); None with
+    ``result`` made "degenerate", with the reason and the time since ``t0``, when the design
+    cannot be built."""
     try:
-        scene = build_feeder(
+        return build_feeder(
             DesignParameters.from_vector([float(v) for v in job["values"]]),
             name=f"design {int(job['design_id'])}",
             **environment_from_dict(job["feeder"]),
@@ -143,13 +159,7 @@ def evaluate_necessary(job: SweepJob) -> dict[str, Any]:
         result["status"] = "degenerate"
         result["reason"] = exc.reason
         result["wall_time_s"] = time.perf_counter() - t0
-        return result
-    verdict = necessary_conditions(scene, noise.tolerance, position=noise.position, yaw=noise.yaw)
-    result["status"] = "feasible" if verdict.passes else "infeasible"
-    if not verdict.passes:
-        result["reason"] = f"fails the necessary {verdict.failed} test"
-    result["wall_time_s"] = time.perf_counter() - t0
-    return result
+        return None
 
 
 def _new_result(job: SweepJob) -> dict[str, Any]:
@@ -230,16 +240,8 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
     design_id, level = int(job["design_id"]), str(job["level"])
     result = _new_result(job)
     values = [float(v) for v in job["values"]]
-    try:
-        scene = build_feeder(
-            DesignParameters.from_vector(values),
-            name=f"design {design_id}",
-            **environment_from_dict(job["feeder"]),
-        )
-    except DegenerateDesign as exc:
-        result["status"] = "degenerate"
-        result["reason"] = exc.reason
-        result["wall_time_s"] = time.perf_counter() - t0
+    scene = _scene_or_degenerate(job, result, t0)
+    if scene is None:
         return result
     budget = Budget(float(job["time_s"]), job["propagations"])
     seed = run_seed(int(job["seed"]), design_id, int(job["rung"]))
