@@ -225,6 +225,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                     "of",
                     "would throw away",
                     "speed-up",
+                    "95% CI",
                 ],
                 [
                     [
@@ -238,6 +239,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                         str(p.get("recall_basis", "the holdout")),
                         ", ".join(str(d) for d in p.get("thrown_away") or []) or DASH,
                         cell(p.get("speedup"), ".2f"),
+                        interval(p.get("speedup_ci")),
                     ]
                     for p in pipelines
                 ],

@@ -370,13 +370,15 @@ def _pipelines(ladder, holdout, status, wall, replay: _Replay) -> list[dict[str,
     designs); a design pays for each rung it reaches. Recall: the fraction of the designs
     that work that reach the passive rung, on :class:`_Replay`'s basis (Wilson 95%;
     ``recall_n`` designs), with the ones it would throw away. The speed-up is over the
-    passive rung alone."""
+    passive rung alone, with a paired bootstrap 95% interval (the same resampled designs
+    for both costs)."""
     planning = [level for level in ladder if level != PASSIVE]
     full = [d for d in holdout if all((d, level) in wall for level in ladder)]
     rng = np.random.default_rng(0)
     resample = rng.integers(0, len(full), (BOOTSTRAP_SAMPLES, len(full))) if full else None
     out = []
     alone = None
+    alone_means = None
     for mask in range(2 ** len(planning)):
         rungs = [level for k, level in enumerate(planning) if mask >> k & 1] + [PASSIVE]
         costs = []
@@ -389,11 +391,17 @@ def _pipelines(ladder, holdout, status, wall, replay: _Replay) -> list[dict[str,
             costs.append(cost)
         mean: float | None = None
         ci: list[float | None] = [None, None]
+        speedup_ci: list[float | None] = [None, None]
         if resample is not None:
             samples = np.array(costs)
             means = samples[resample].mean(1)
             mean = float(samples.mean())
             ci = [float(np.quantile(means, 0.025)), float(np.quantile(means, 0.975))]
+            if mask == 0:
+                alone_means = means
+            if alone_means is not None and bool(np.all(means > 0.0)):
+                ratios = alone_means / means
+                speedup_ci = [float(np.quantile(ratios, 0.025)), float(np.quantile(ratios, 0.975))]
         if mask == 0:
             alone = mean
         out.append(
@@ -404,6 +412,7 @@ def _pipelines(ladder, holdout, status, wall, replay: _Replay) -> list[dict[str,
                 "n": len(full),
                 **replay.recall(rungs[:-1]),
                 "speedup": alone / mean if alone and mean else None,
+                "speedup_ci": speedup_ci,
             }
         )
     return out
@@ -514,6 +523,9 @@ def summary_table(summary: dict[str, Any]) -> str:
     for pipe in summary.get("pipelines") or []:
         cost = "-" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f}"
         speedup = "-" if pipe["speedup"] is None else f"{pipe['speedup']:.2f}x"
+        low, high = pipe.get("speedup_ci") or [None, None]
+        if low is not None and high is not None:
+            speedup += f" [{low:.2f}, {high:.2f}]"
         lost = pipe.get("thrown_away") or []
         lines.append(
             f"pipeline {' -> '.join(pipe['rungs'])}: {cost} s/design (holdout n={pipe['n']}), "

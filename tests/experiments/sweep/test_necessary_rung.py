@@ -67,3 +67,22 @@ def test_its_stops_are_failing_designs_not_lost_ones(tmp_path: Path):
     geometric = next(p for p in summary["pruning"] if p["level"] == "geometric")
     assert (geometric["recall_basis"], geometric["recall_n"]) == ("every design", 2)
     assert summary["thrown_away"] is None
+
+
+def test_each_pipelines_speed_up_has_a_paired_interval(tmp_path: Path):
+    """The holdout's designs cost alike (necessary 1 s, passive 0.2 s, geometric 1 s in the
+    fixture), so every resample gives the same ratio: the interval is the point; passive
+    alone is 1 exactly."""
+    config = config_from_dict(NECESSARY_FIRST)
+    holdout = _holdout_of(config)
+    plan = {
+        d: {"necessary": "feasible", "passive": "infeasible", "geometric": "feasible"}
+        for d in range(8)
+    }
+    summary = summarise(_store(tmp_path / "results.sqlite", config, plan, holdout))
+    by_rungs = {tuple(p["rungs"]): p for p in summary["pipelines"]}
+    assert by_rungs[("passive",)]["speedup_ci"] == [1.0, 1.0]
+    for pipe in summary["pipelines"]:
+        low, high = pipe["speedup_ci"]
+        assert low == pytest.approx(pipe["speedup"]) and high == pytest.approx(pipe["speedup"])
+    assert by_rungs[("necessary", "passive")]["speedup"] == pytest.approx(0.2 / 1.2)
