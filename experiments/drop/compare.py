@@ -33,10 +33,11 @@ FRESH_DROPS = 40  # trials per design: 40 of 40 has a Wilson lower bound of 0.91
 FRESH_TAG = 0xC0DE  # mixed into the fresh seed so that it is no verdict's seed
 
 
-def fresh_seed(base: int, avoid: Collection[int] = ()) -> int:
-    """A seed derived from ``base`` (e.g. the sweep's seed) that is none of ``avoid`` (the
-    seeds the designs were ranked with), so the comparison's draws are not the ranking's."""
-    state = np.random.SeedSequence([int(base), FRESH_TAG]).generate_state(1)[0]
+def fresh_seed(base: int, avoid: Collection[int] = (), tag: int = FRESH_TAG) -> int:
+    """A seed derived from ``base`` (e.g. the sweep's seed) and ``tag`` (what it is for) that
+    is none of ``avoid`` (the seeds the designs were ranked with), so the comparison's draws
+    are not the ranking's."""
+    state = np.random.SeedSequence([int(base), int(tag)]).generate_state(1)[0]
     seed = int(state % (2**31 - 1))
     while seed in set(avoid):
         seed = (seed + 1) % (2**31 - 1)

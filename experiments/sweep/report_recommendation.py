@@ -16,8 +16,6 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 CONFIRMED = "confirmed"
 NOT_REJUDGED = "not re-judged"
 MARGINS_TAG = 0x3A261  # mixed into the sweep's seed: the margins' draws are none of its others
@@ -108,11 +106,9 @@ def _none(why: str) -> dict[str, Any]:
 def margins_seed(sweep_seed: int, avoid: tuple[int, ...] = ()) -> int:
     """The seed of the recommended design's margins: from the sweep's seed only, and none of
     ``avoid`` (the seeds its verdicts and the fresh comparison used)."""
-    state = np.random.SeedSequence([int(sweep_seed), MARGINS_TAG]).generate_state(1)[0]
-    seed = int(state % (2**31 - 1))
-    while seed in set(avoid):
-        seed = (seed + 1) % (2**31 - 1)
-    return seed
+    from experiments.drop.compare import fresh_seed
+
+    return fresh_seed(sweep_seed, avoid, MARGINS_TAG)
 
 
 def margins_of_recommended(
