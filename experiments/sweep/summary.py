@@ -515,8 +515,9 @@ def summary_table(summary: dict[str, Any]) -> str:
     if p and p["works_n"]:
         lo, hi = p["works_ci"]
         lines.append(
-            f"passive verdict: {p['works']} of {p['evaluated']} designs work "
-            f"({_pct(p['works_fraction'])} [{_pct(lo)}, {_pct(hi)}] of {p['works_basis']}); "
+            f"passive verdict: {p['works']} of {p['evaluated']} designs judged work "
+            f"({_pct(p['works_fraction'])} [{_pct(lo)}, {_pct(hi)}] of {p['works_basis']}, "
+            f"n = {p['works_n']}); "
             f"{p['undecided']} undecided; {p['mean_trials']:.1f} trials per verdict, "
             f"{p['drops_per_s']:.0f} drops/s"
         )

@@ -12,7 +12,7 @@ from test_sound_pruning import _holdout_of, _store
 
 from experiments.sweep.config import ConfigError, config_from_dict
 from experiments.sweep.job import evaluate_design, sweep_job
-from experiments.sweep.summary import summarise
+from experiments.sweep.summary import summarise, summary_table
 from feeders.design import preset
 
 GEOMETRIC = TINY["ladder"][0]
@@ -64,6 +64,10 @@ def test_its_stops_are_failing_designs_not_lost_ones(tmp_path: Path):
     summary = summarise(_store(tmp_path / "results.sqlite", config, plan, holdout))
     passive = summary["passive"]
     assert (passive["works_basis"], passive["works_n"]) == ("every design", 8)
+    # 6 judged, 2 proven to fail: the fraction is over all 8
+    assert "2 of 6 designs judged work (25% [7%, 59%] of every design, n = 8)" in summary_table(
+        summary
+    )
     geometric = next(p for p in summary["pruning"] if p["level"] == "geometric")
     assert (geometric["recall_basis"], geometric["recall_n"]) == ("every design", 2)
     assert summary["thrown_away"] is None
