@@ -17,8 +17,15 @@ PASSIVE = "passive"
 # fails them cannot work; cheap (about 7 ms a design), so it may stand before the verdict and
 # prune without losing a design that works (docs/necessary.md).
 NECESSARY = "necessary"
+# The screen rung (experiments.drop.screen): the verdict's drops at a coarser step, one entry at
+# a time, by a sequential test that can only fail a design, with a stated error (0.001 for a
+# design that works at p = 0.95); it prunes most failing designs at a fraction of the verdict's
+# cost (docs/verdict.md).
+SCREEN = "screen"
+# The rungs that judge by passive drops with the dynamic level (their kernels are its).
+DROP_RUNGS = (PASSIVE, SCREEN)
 # What a rung of a sweep's ladder can be.
-RUNG_NAMES = (*LEVEL_NAMES, PASSIVE, NECESSARY)
+RUNG_NAMES = (*LEVEL_NAMES, PASSIVE, NECESSARY, SCREEN)
 # planners.registry.PLANNERS, in its order.
 PLANNER_NAMES = ("rrt", "kpiece", "est")
 # feeders.design.PRESETS: the paper's designs (Figs. 4-9, Table 3).

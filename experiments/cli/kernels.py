@@ -10,7 +10,7 @@ import sys
 from collections.abc import Iterable
 from typing import Any
 
-from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE
+from experiments.names import DROP_RUNGS, LEVEL_NAMES, NECESSARY
 
 COMPILING = "partfeeder: compiling the numba kernels once for this machine (later runs load them)"
 COMPILING_BAR = "compiling the numba kernels once for this machine"
@@ -19,7 +19,7 @@ COMPILING_BAR = "compiling the numba kernels once for this machine"
 def kernel_levels(rungs: Iterable[str]) -> list[str]:
     """The levels whose kernels ``rungs`` (level names or ``passive``) run: the passive rung
     drops the part with the dynamic level."""
-    levels = {"dynamic" if rung == PASSIVE else rung for rung in rungs}
+    levels = {"dynamic" if rung in DROP_RUNGS else rung for rung in rungs}
     return [name for name in (*LEVEL_NAMES, NECESSARY) if name in levels]
 
 

@@ -13,12 +13,14 @@ called failing, and what a clearly failing design costs.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.signal import convolve2d
 from scipy.stats import binom
 
+from experiments.drop.screen_settings import ScreenSettings
 from experiments.drop.sequential import FAILS, WORKS, Wald
 from experiments.drop.verdict import VerdictSettings, decide, looks
 from experiments.drop.verdict_settings import SPRT
@@ -69,7 +71,12 @@ def entry_path(p: float, settings: VerdictSettings) -> EntryPath:
     distribution of the success count propagated from look to look (binomial steps), the
     counts that decide absorbed where they decide."""
     _check(p)
-    at = looks(settings)
+    return sequential_path(p, looks(settings), lambda k, n: entry_status(k, n, settings))
+
+
+def sequential_path(p: float, at: Sequence[int], status: Callable[[int, int], str]) -> EntryPath:
+    """:func:`entry_path` of any test that looks after the drop counts ``at`` and decides
+    ``status(successes, drops)`` there."""
     alive = np.array([1.0])  # P(count = k and still undecided), k = 0..n
     works, fails = np.zeros(len(at)), np.zeros(len(at))
     n = 0
@@ -78,7 +85,7 @@ def entry_path(p: float, settings: VerdictSettings) -> EntryPath:
         alive = np.convolve(alive, step)
         n = look
         for k in range(n + 1):
-            decision = entry_status(k, n, settings)
+            decision = status(k, n)
             if decision == WORKS:
                 works[i] += alive[k]
             elif decision == FAILS:
@@ -160,3 +167,51 @@ def _wilson_pair(p: float, settings: VerdictSettings) -> OperatingPoint:
         alive[w_mask | f_mask] = 0.0
     rest = float(alive.sum())
     return OperatingPoint(p, works, fails, rest, mean + n * rest)
+
+
+@dataclass(frozen=True)
+class ScreenPoint:
+    """At true success probability ``p`` of every entry: the probability that the screen
+    fails the design (prunes it), passes it, or stops undecided (``max_drops`` drops of an
+    entry); the two last go on to the verdict."""
+
+    p: float
+    fails: float
+    passes: float
+    undecided: float
+
+
+def screen_operating_point(p: float, settings: ScreenSettings, entries: int = 2) -> ScreenPoint:
+    """The exact operating characteristic of the screen (:mod:`experiments.drop.screen`) at
+    ``p``, entries independent. Each entry's test sees only its own drops, so which entry
+    drops next changes the cost, not the outcome: the design fails when some entry's test
+    would fail within ``max_drops`` drops (the screen stops at the first, and any other is
+    cut short), passes when every entry's passes."""
+    _check(p)
+    from experiments.drop.screen import wald_of
+
+    test = wald_of(settings)
+    path = sequential_path(p, range(1, settings.max_drops + 1), test.status)
+    fails_one, passes_one = float(path.fails_at.sum()), float(path.works_at.sum())
+    fails = 1.0 - (1.0 - fails_one) ** entries
+    passes = passes_one**entries
+    return ScreenPoint(p, fails, passes, max(0.0, 1.0 - fails - passes))
+
+
+def screened_operating_point(
+    p: float, screen: ScreenSettings, settings: VerdictSettings, entries: int = 2
+) -> OperatingPoint:
+    """The operating characteristic of the screen followed by the verdict for what it does
+    not fail (their drops drawn from independent seeds, as the sweep draws them): works when
+    the screen does not fail the design and the verdict says it works. ``mean_trials`` is
+    the verdict's, counted only when it runs (the screen's drops are cheaper and apart)."""
+    first = screen_operating_point(p, screen, entries)
+    then = design_operating_point(p, settings, entries)
+    on = 1.0 - first.fails
+    return OperatingPoint(
+        p,
+        on * then.works,
+        first.fails + on * then.fails,
+        on * then.undecided,
+        on * then.mean_trials,
+    )

@@ -8,10 +8,13 @@ successes the log-likelihood ratio is
 
     LLR(k, n) = k ln(works_p / fails_p) + (n - k) ln((1 - works_p) / (1 - fails_p)),
 
-and the entry *works* the first time LLR >= ln((1 - e) / e), *fails* the first time
-LLR <= ln(e / (1 - e)), with e the test's error rate (Wald's bounds, alpha = beta = e: the
-probability of calling a ``fails_p`` entry working, or a ``works_p`` one failing, is at most
-about e, whenever one looks). An entry's decision is final: later drops from it count in the
+and the entry *works* the first time LLR >= ln((1 - b) / a), *fails* the first time
+LLR <= ln(b / (1 - a)), with a = ``false_works`` (the probability of calling a ``fails_p``
+entry working) and b = ``false_fails`` (of calling a ``works_p`` entry failing): Wald's
+bounds, which keep each error at most about its rate whenever one looks. The verdict's test
+has a = b = ``error``; the screen's (:mod:`experiments.drop.screen`) a small b, since
+calling an entry failing prunes its design, and a large a, since passing one only costs the
+full verdict. An entry's decision is final: later drops from it count in the
 verdict's numbers but not in its test. The design works when every entry works and fails as
 soon as one fails; :mod:`experiments.drop.operating` computes what that does at any p exactly.
 """
@@ -28,16 +31,30 @@ WORKS, FAILS, UNDECIDED = "works", "fails", "undecided"
 @dataclass(frozen=True)
 class Wald:
     """The test between ``works_p`` and ``fails_p`` (0 < fails_p < works_p < 1) with error
-    rate ``error`` on each side."""
+    rate ``error`` on each side, or ``false_works`` and ``false_fails`` when given."""
 
     works_p: float
     fails_p: float
-    error: float
+    error: float = 0.01
+    false_works: float | None = None  # a: P(works | fails_p); default ``error``
+    false_fails: float | None = None  # b: P(fails | works_p); default ``error``
 
     @property
-    def bound(self) -> float:
-        """The upper bound on the LLR; the lower one is its negative (alpha = beta)."""
-        return math.log((1.0 - self.error) / self.error)
+    def upper(self) -> float:
+        """The LLR at or above which the entry works: ln((1 - b) / a)."""
+        a, b = self._rates()
+        return math.log((1.0 - b) / a)
+
+    @property
+    def lower(self) -> float:
+        """The LLR at or below which the entry fails: ln(b / (1 - a))."""
+        a, b = self._rates()
+        return math.log(b / (1.0 - a))
+
+    def _rates(self) -> tuple[float, float]:
+        a = self.error if self.false_works is None else self.false_works
+        b = self.error if self.false_fails is None else self.false_fails
+        return a, b
 
     def llr(self, successes: int, drops: int) -> float:
         """The log-likelihood ratio of ``works_p`` over ``fails_p`` after ``drops`` drops
@@ -50,9 +67,9 @@ class Wald:
         """``works``, ``fails`` or ``undecided`` for these counts (before any earlier
         crossing is taken into account: see :func:`advance`)."""
         value = self.llr(successes, drops)
-        if value >= self.bound:
+        if value >= self.upper:
             return WORKS
-        if value <= -self.bound:
+        if value <= self.lower:
             return FAILS
         return UNDECIDED
 

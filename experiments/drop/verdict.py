@@ -167,6 +167,38 @@ def entry_state(
     return (pose[0], pose[1], pose[2], velocity[0], velocity[1], 0.0)
 
 
+@dataclass(frozen=True)
+class EntryDrop:
+    """One perturbed drop from one entry: success, outcome class, T (s) and Eq. 10's
+    distance to q_goal."""
+
+    success: bool
+    outcome: str
+    T: float
+    goal_error: float
+
+
+def entry_drop(
+    scene: Scene,
+    level: DynamicLevel,
+    orientation: str,
+    perturbation: DropDraw,
+    k: int,
+    t_max: float,
+) -> EntryDrop:
+    """The drop from ``orientation`` (entry ``k`` of ``perturbation``) through the made
+    ``scene`` with its dynamic ``level``, judged."""
+    start = entry_state(
+        level,
+        scene.start(orientation),
+        perturbation.entry_offsets[k],
+        perturbation.entry_velocities[k],
+    )
+    result = passive_drop(scene, orientation, t_max=t_max, level=level, start=start)
+    outcome = classify(scene, result.end, result.final_pose, result.success)
+    return EntryDrop(result.success, outcome, result.T, result.goal_error)
+
+
 def run_trial(
     make_scene: Callable[[DropDraw], Scene],
     orientations: Sequence[str],
@@ -184,17 +216,11 @@ def run_trial(
     level = DynamicLevel(scene, step=settings.step)
     success, outcome, times, errors = [], [], [], []
     for k, orientation in enumerate(orientations):
-        start = entry_state(
-            level,
-            scene.start(orientation),
-            perturbation.entry_offsets[k],
-            perturbation.entry_velocities[k],
-        )
-        result = passive_drop(scene, orientation, t_max=settings.t_max, level=level, start=start)
-        success.append(result.success)
-        outcome.append(classify(scene, result.end, result.final_pose, result.success))
-        times.append(result.T)
-        errors.append(result.goal_error)
+        drop = entry_drop(scene, level, orientation, perturbation, k, settings.t_max)
+        success.append(drop.success)
+        outcome.append(drop.outcome)
+        times.append(drop.T)
+        errors.append(drop.goal_error)
     return Trial(index, tuple(success), tuple(outcome), tuple(times), tuple(errors))
 
 

@@ -55,17 +55,7 @@ class VerdictSettings:
             ("fails_p", self.fails_p, 0.001, 0.999),
             ("error", self.error, 1e-6, 0.25),
         )
-        for name, value, low, high in checks:
-            if isinstance(value, bool) or not (
-                isinstance(value, int | float) and math.isfinite(value)
-            ):
-                raise ValueError(f"verdict.{name} = {value!r} must be a number")
-            if name in ("min_drops", "batch", "max_drops") and not isinstance(value, int):
-                raise ValueError(f"verdict.{name} = {value!r} must be a whole number")
-            if not low <= value <= high:
-                raise ValueError(
-                    f"verdict.{name} = {value!r} is outside the allowed range [{low:g}, {high:g}]"
-                )
+        check_ranges("verdict", checks, whole=("min_drops", "batch", "max_drops"))
         if self.min_drops > self.max_drops:
             raise ValueError(
                 f"verdict.min_drops = {self.min_drops} is more than max_drops = {self.max_drops}"
@@ -82,3 +72,22 @@ class VerdictSettings:
         if self.rule == WILSON:
             return {}
         return {"rule": self.rule, **{k: getattr(self, k) for k in SPRT_KEYS}}
+
+
+def check_ranges(
+    prefix: str, checks: tuple[tuple[str, object, float, float], ...], whole: tuple[str, ...]
+) -> None:
+    """ValueError naming ``prefix.name``, its value and the allowed range for the first of
+    ``checks`` (name, value, low, high) that is not a finite number in [low, high] (a whole
+    number for the names in ``whole``)."""
+    for name, value, low, high in checks:
+        if isinstance(value, bool) or not (
+            isinstance(value, int | float) and math.isfinite(value)
+        ):
+            raise ValueError(f"{prefix}.{name} = {value!r} must be a number")
+        if name in whole and not isinstance(value, int):
+            raise ValueError(f"{prefix}.{name} = {value!r} must be a whole number")
+        if not low <= value <= high:
+            raise ValueError(
+                f"{prefix}.{name} = {value!r} is outside the allowed range [{low:g}, {high:g}]"
+            )

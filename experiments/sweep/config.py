@@ -12,6 +12,10 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
       inputs: {max_speed: 1, max_turn: 1, max_force: 10, max_torque: 2}
     planner: {step: 0.05, min_steps: 1, max_steps: 20}   # OMPL's propagation (optional)
     ladder:                               # climbed in this order
+      - level: necessary                  # exact tests a design that works passes
+      - level: screen                     # coarse-step drops, one entry at a time, that
+        screen: {step: 0.004, false_fails: 0.001, false_works: 0.1, max_drops: 60}
+                                          # fail a design only on strong evidence
       - level: geometric
         planners: [rrt]                   # rrt, kpiece, est
         runs: 1                           # runs per planner and entry orientation
@@ -41,7 +45,7 @@ from pathlib import Path
 from typing import Any
 
 from experiments.config_files import resolve_config
-from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE, PLANNER_NAMES, RUNG_NAMES
+from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE, PLANNER_NAMES, RUNG_NAMES, SCREEN
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -91,6 +95,13 @@ class Rung:
             }
         if self.level == NECESSARY:
             return {"level": self.level, "perturbations": dict(self.perturbations)}
+        if self.level == SCREEN:
+            return {
+                "level": self.level,
+                "screen": dict(self.verdict),
+                "perturbations": dict(self.perturbations),
+                "prunes": False,
+            }
         budget: dict[str, Any] = {"time": self.time_s}
         if self.propagations is not None:
             budget["propagations"] = self.propagations
@@ -198,9 +209,35 @@ def _necessary_rung(spec: Any, field_name: str) -> Rung:
     return Rung(NECESSARY, (), perturbations=kept, prunes=True)
 
 
+def _screen_rung(spec: Any, field_name: str) -> Rung:
+    """The screen rung: its test's settings and the perturbations of its drops (default:
+    the verdict's), checked by the classes that use them. A design the screen fails stops
+    (a statistical prune, with the stated error); one it leaves undecided climbs on
+    (``prunes: false`` in the stored config: an undecided screen proves nothing)."""
+    from experiments.drop.perturbations import Perturbations
+    from experiments.drop.screen_settings import ScreenSettings
+
+    spec = mapping_field(spec, field_name, {"level", "screen", "perturbations"})
+    keys = set(ScreenSettings.__dataclass_fields__) - {"perturbations"}
+    given = mapping_field(spec.get("screen", {}) or {}, f"{field_name}.screen", keys)
+    noise = mapping_field(
+        spec.get("perturbations", {}) or {},
+        f"{field_name}.perturbations",
+        set(Perturbations.__dataclass_fields__),
+    )
+    try:
+        perturbations = Perturbations(**noise)
+        settings = ScreenSettings(**given, perturbations=perturbations)
+    except ValueError as exc:
+        raise ConfigError(f"{field_name}.{exc}") from None
+    return Rung(SCREEN, (), verdict=settings.fields(), perturbations=perturbations.to_dict())
+
+
 def _rung(spec: Any, field_name: str) -> Rung:
     if isinstance(spec, dict) and spec.get("level") == PASSIVE:
         return _passive_rung(spec, field_name)
+    if isinstance(spec, dict) and spec.get("level") == SCREEN:
+        return _screen_rung(spec, field_name)
     if isinstance(spec, dict) and spec.get("level") == NECESSARY:
         return _necessary_rung(spec, field_name)
     spec = mapping_field(spec, field_name, {"level", "planners", "runs", "budget", "prunes"})
@@ -283,7 +320,7 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
     if order != sorted(order):
         raise ConfigError(
             f"ladder: {levels} must climb the planning levels in order {', '.join(LEVEL_NAMES)} "
-            f"(the {PASSIVE} and {NECESSARY} rungs may stand anywhere)"
+            f"(the {PASSIVE}, {NECESSARY} and {SCREEN} rungs may stand anywhere)"
         )
     holdout = mapping_field(data.get("holdout", {}) or {}, "holdout", {"fraction", "seed"})
     fraction = number_field(holdout.get("fraction", 0.0), "holdout.fraction", 0.0, 1.0)

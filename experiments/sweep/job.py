@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
-from experiments.names import NECESSARY, PASSIVE
+from experiments.names import DROP_RUNGS, NECESSARY, PASSIVE, SCREEN
 from experiments.sweep.results_db import SAMPLED_LEVELS
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
@@ -41,8 +41,9 @@ class SweepJob(TypedDict):
     planner: dict[str, Any]  # OMPL's propagation settings (config's ``planner``)
     seed: int  # the sweep's
     name: str  # the sweep's
-    verdict: dict[str, Any]  # the passive rung's VerdictSettings fields ({} for a level)
-    perturbations: dict[str, float]  # the passive rung's Perturbations fields ({} for a level)
+    verdict: dict[str, Any]  # the passive rung's VerdictSettings fields, the screen's
+    # ScreenSettings fields ({} for a level)
+    perturbations: dict[str, float]  # the drop rungs' Perturbations fields ({} for a level)
 
 
 def sweep_job(config: SweepConfig, design_id: int, values: list[float], rung: int) -> SweepJob:
@@ -96,6 +97,15 @@ def verdict_seed(sweep_seed: int, design_id: int) -> int:
     return int(state % (2**31 - 1))
 
 
+def screen_seed(sweep_seed: int, design_id: int) -> int:
+    """The seed of a design's screen: from the sweep's seed and the design, a stream apart
+    from :func:`verdict_seed`'s, so the screen's drops and the verdict's are independent (the
+    operating characteristic of the two together is then exact:
+    :func:`experiments.drop.operating.screened_operating_point`)."""
+    state = np.random.SeedSequence([sweep_seed, design_id, 0x5C2EE7]).generate_state(1)[0]
+    return int(state % (2**31 - 1))
+
+
 def warm_up(levels: tuple[str, ...]) -> None:
     """Load what the evaluations at ``levels`` (rung names) use before a worker's first job,
     so that no evaluation's ``wall_time_s`` counts it: the modules imported inside the
@@ -105,9 +115,9 @@ def warm_up(levels: tuple[str, ...]) -> None:
     from experiments.drop import verdict  # noqa: F401  (imported here for its load time)
     from validity.kernel_cache import compile_kernels
 
-    if any(level not in (PASSIVE, NECESSARY) for level in levels):
+    if any(level not in (*DROP_RUNGS, NECESSARY) for level in levels):
         from planners import benchmark  # noqa: F401
-    kernels = {"dynamic" if level == PASSIVE else level for level in levels}
+    kernels = {"dynamic" if level in DROP_RUNGS else level for level in levels}
     compile_kernels(level for level in (*SAMPLED_LEVELS, NECESSARY) if level in kernels)
 
 
@@ -119,6 +129,8 @@ def evaluate_design(job: SweepJob) -> dict[str, Any]:
         return evaluate_passive(job)
     if job["level"] == NECESSARY:
         return evaluate_necessary(job)
+    if job["level"] == SCREEN:
+        return evaluate_screen(job)
     return evaluate_planning(job)
 
 
@@ -214,6 +226,53 @@ def evaluate_passive(job: SweepJob) -> dict[str, Any]:
         result["orientations"][orientation] = verdict.interval(orientation)[0] > settings.target
     result["verdict"] = verdict.to_dict()
     result["verdict_seed"] = seed
+    result["wall_time_s"] = time.perf_counter() - t0
+    return result
+
+
+def evaluate_screen(job: SweepJob) -> dict[str, Any]:
+    """Can the design be shown failing cheaply? Its screen
+    (:func:`experiments.drop.screen.design_screen`) with the rung's settings and
+    perturbations, seeded by :func:`screen_seed`: "infeasible" when the screen fails it (a
+    statistical prune with the stated error ``false_fails``), "feasible" when it passes,
+    ``unknown`` when it is undecided (the design goes on to the verdict either way). The
+    screen (``Screen.to_dict()``) travels in the result."""
+    from experiments.drop.perturbations import Perturbations
+    from experiments.drop.screen import PASSES, design_screen
+    from experiments.drop.screen_settings import ScreenSettings
+
+    t0 = time.perf_counter()
+    result = _new_result(job)
+    environment = environment_from_dict(job["feeder"])
+    settings = ScreenSettings(**job["verdict"], perturbations=Perturbations(**job["perturbations"]))
+    try:
+        screen = design_screen(
+            DesignParameters.from_vector([float(v) for v in job["values"]]),
+            part=environment.pop("part"),
+            friction=environment.pop("friction"),
+            settings=settings,
+            seed=screen_seed(int(job["seed"]), int(job["design_id"])),
+            **environment,
+        )
+    except DegenerateDesign as exc:
+        result["status"] = "degenerate"
+        result["reason"] = exc.reason
+        result["wall_time_s"] = time.perf_counter() - t0
+        return result
+    statuses = dict(zip(screen.orientations, screen.statuses, strict=True))
+    result["status"] = {PASSES: "feasible", "fails": "infeasible"}.get(screen.decision, "unknown")
+    failed = [o for o, s in statuses.items() if s == "fails"]
+    if failed:
+        k = screen.orientations.index(failed[0])
+        result["reason"] = (
+            f"fails the screen from {failed[0]} "
+            f"({screen.successes[k]} of {screen.drops[k]} drops at h = {settings.step:g} s)"
+        )
+    elif screen.decision != PASSES:
+        result["reason"] = f"screen undecided after {screen.total_drops} drops"
+    for orientation in ORIENTATIONS:
+        result["orientations"][orientation] = statuses.get(orientation) == "works"
+    result["screen"] = screen.to_dict()
     result["wall_time_s"] = time.perf_counter() - t0
     return result
 

@@ -52,7 +52,7 @@ from typing import Any
 
 import numpy as np
 
-from experiments.names import NECESSARY, PASSIVE
+from experiments.names import NECESSARY, PASSIVE, SCREEN
 from experiments.proportions import wilson_interval
 from experiments.sweep import results_db
 from feeders.design import PARAMETER_NAMES
@@ -274,13 +274,14 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
         return None
     evaluated = [d for (d, level) in status if level == PASSIVE]
     decisions = {d: stored[d]["decision"] for d in evaluated if d in stored}
-    # first, or after sound rungs only: every design has a verdict or a proof that it fails
-    first = all(level in SOUND for level in ladder[: ladder.index(PASSIVE)])
+    # first, or after sound or tested rungs only: every design has a verdict, a proof that
+    # it fails or a failed test
+    first = all(level in (*SOUND, *TESTED) for level in ladder[: ladder.index(PASSIVE)])
     proven = sorted(
         {
             d
             for (d, level), s in status.items()
-            if level in SOUND and s == "infeasible" and (d, PASSIVE) not in status
+            if level in (*SOUND, *TESTED) and s == "infeasible" and (d, PASSIVE) not in status
         }
     )
     basis = [*evaluated, *proven] if first else [d for d in holdout if (d, PASSIVE) in status]
@@ -308,6 +309,11 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
 # they stop is a failing design, not a lost one, so they neither hide a design that works from
 # a recall nor throw one away.
 SOUND = (NECESSARY,)
+# Rungs whose "infeasible" is a sequential test's, with a stated error rate (the screen:
+# docs/verdict.md): their stops count as failing designs in the passive fraction (as the
+# verdict's own "fails" does, which is a test too), but they may hide a design that works, so
+# their recall and what they threw away are measured on the holdout.
+TESTED = (SCREEN,)
 
 
 def _prunes(rungs: list[dict[str, Any]]) -> dict[str, bool]:
@@ -327,7 +333,9 @@ class _Replay:
     """Which designs a recall rests on: for the levels ``needed`` (and the truth), every
     design the truth passes that has all their results, when no rung below the highest of
     them (the truth aside) could have stopped a design on its way up (each such rung does
-    not prune, so reaching them did not depend on their verdicts); else the holdout's."""
+    not prune, so reaching them did not depend on their verdicts, or stops only designs
+    that fail: proven, or by a test with a stated error) and none of them is such a test;
+    else the holdout's."""
 
     def __init__(self, ladder, prunes, truth_level, holdout, status):
         self.ladder, self.prunes, self.truth = ladder, prunes, truth_level
@@ -335,11 +343,13 @@ class _Replay:
         self.designs = sorted({d for d, _ in status})
 
     def census(self, needed: list[str]) -> bool:
+        if any(level in TESTED for level in needed):
+            return False  # its stops have no verdict: only the holdout shows what it lost
         top = max(self.ladder.index(level) for level in [*needed, self.truth])
         return not any(
             self.prunes[level]
             for level in self.ladder[:top]
-            if level != self.truth and level not in SOUND
+            if level != self.truth and level not in (*SOUND, *TESTED)
         )
 
     def recall(self, needed: list[str]) -> dict[str, Any]:

@@ -76,11 +76,11 @@ def test_prunes_is_read_checked_and_only_a_non_default_value_changes_the_results
 
 
 def test_the_shipped_configs_prune_as_documented() -> None:
-    """The default prunes only on proofs: the necessary conditions, then the verdict; no
-    planning rung prunes on a budget miss."""
+    """The default stops a design only on a test with a stated error: the screen, then the
+    verdict; no planning rung prunes on a budget miss."""
     default = load_config("default").ladder
-    assert [r.level for r in default if r.prunes] == ["necessary"]
-    assert default[0].level == "necessary" and default[1].level == "passive"
+    assert [r.level for r in default if r.prunes] == []
+    assert default[0].level == "screen" and default[1].level == "passive"
     paper = load_config("paper").ladder
     assert all(r.prunes for r in paper if r.level != "passive")
 
