@@ -5,6 +5,12 @@ State: the pose ``q = (x, y, yaw)`` of the part's centre of mass. Input: a pose-
 ``n = ceil(T / h)`` equal steps ``q <- q + (T/n) u`` (each at most h) and stops at the last
 pose before a step would penetrate an obstacle or leave the bounds, as Algorithm 1 does
 (``break`` on ``Collision``).
+
+As a relaxation of the models above it (issue 21) the level may grant a ``slack`` (length):
+a pose is valid when the part penetrates no obstacle deeper than ``slack`` (psi_n >= -slack),
+so contact within the dynamic model's overlap and walls made to tolerance are not refused;
+:func:`validity.geometric_slack.relaxation_slack` states a design's slack and its parts
+(docs/geometric-relaxation.md). ``slack = 0`` is Eq. 9 as the paper writes it.
 """
 
 from __future__ import annotations
@@ -16,10 +22,11 @@ import numpy as np
 from numba import njit
 
 from feeders.scene import Scene
-from validity.geometry_kernel import penetrates, pose_vertices
+from validity.geometry_kernel import penetrates_deeper_than, pose_vertices
 from validity.scene_arrays import SceneArrays
 
 DEFAULT_STEP = 0.01  # h (s): with |u| <= 1 a step moves a corner by < 0.03, far below a wall
+MAX_SLACK = 0.2  # length: half a wall (0.4 thick); stated slacks are 0.02-0.16 (table3 0.087)
 
 
 @njit(cache=True)
@@ -28,26 +35,72 @@ def _in_bounds(x: float, y: float, bounds: np.ndarray) -> bool:
 
 
 @njit(cache=True)
-def _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds):
-    """:func:`pose_is_valid` writing the placed corners into the caller's buffer ``world``."""
+def _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds, ps, ds):
+    """:func:`pose_is_valid` writing the placed corners into the caller's buffer ``world``;
+    ``ps (P,)``, ``ds (C,)``: the polygons' and discs' slacks."""
     if not _in_bounds(x, y, bounds):
         return False
     pose_vertices(body, x, y, yaw, world)
-    return not penetrates(world, verts, counts, aabbs, circles)
+    return not penetrates_deeper_than(world, verts, counts, aabbs, circles, ps, ds)
 
 
 @njit(cache=True)
-def pose_is_valid(x: float, y: float, yaw: float, body, verts, counts, aabbs, circles, bounds):
-    """psi_n(q) >= 0 for every obstacle, and the centre of mass within the bounds."""
+def _zero_slacks(verts, circles):
+    return np.zeros(verts.shape[0]), np.zeros(circles.shape[0])
+
+
+@njit(cache=True)
+def pose_is_valid(
+    x: float,
+    y: float,
+    yaw: float,
+    body,
+    verts,
+    counts,
+    aabbs,
+    circles,
+    bounds,
+    polygon_slack=None,
+    disc_slack=None,
+):
+    """psi_n(q) >= -slack for every obstacle (slacks in length, per polygon ``(P,)`` and disc
+    ``(C,)``; None: 0, Eq. 9's psi_n >= 0), and the centre of mass within the bounds."""
+    ps, ds = _zero_slacks(verts, circles)
+    if polygon_slack is not None:
+        ps = polygon_slack
+    if disc_slack is not None:
+        ds = disc_slack
     world = np.empty_like(body)
-    return _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds)
+    return _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds, ps, ds)
 
 
 @njit(cache=True)
 def propagate_increments(
-    x, y, yaw, vx, vy, omega, duration, h, body, verts, counts, aabbs, circles, bounds
+    x,
+    y,
+    yaw,
+    vx,
+    vy,
+    omega,
+    duration,
+    h,
+    body,
+    verts,
+    counts,
+    aabbs,
+    circles,
+    bounds,
+    polygon_slack=None,
+    disc_slack=None,
 ):
-    """Eq. 9 stepped at ``h`` for ``duration``; returns ``(x, y, yaw, steps_taken, blocked)``."""
+    """Eq. 9 stepped at ``h`` for ``duration``, a step valid when it penetrates no obstacle
+    deeper than its slack (as :func:`pose_is_valid`); returns ``(x, y, yaw, steps_taken,
+    blocked)``."""
+    ps, ds = _zero_slacks(verts, circles)
+    if polygon_slack is not None:
+        ps = polygon_slack
+    if disc_slack is not None:
+        ds = disc_slack
     n = max(1, math.ceil(duration / h - 1e-9))
     dt = duration / n
     yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
@@ -56,20 +109,52 @@ def propagate_increments(
         nx, ny = x + dt * vx, y + dt * vy
         nyaw = yaw + dt * omega
         nyaw = (nyaw + math.pi) % (2.0 * math.pi) - math.pi
-        if not _valid_into(world, nx, ny, nyaw, body, verts, counts, aabbs, circles, bounds):
+        if not _valid_into(
+            world, nx, ny, nyaw, body, verts, counts, aabbs, circles, bounds, ps, ds
+        ):
             return x, y, yaw, k, True
         x, y, yaw = nx, ny, nyaw
     return x, y, yaw, n, False
 
 
+def _obstacle_slacks(
+    slack: float | Sequence[float] | np.ndarray, polygons: int, discs: int
+) -> np.ndarray:
+    """``slack`` as one value per obstacle ``(polygons + discs,)``, each checked."""
+    values = np.array(slack, dtype=np.float64).ravel()
+    if values.size == 1:
+        values = np.full(polygons + discs, values[0])
+    if values.size != polygons + discs:
+        raise ValueError(
+            f"geometric slack has {values.size} values; the scene has {polygons + discs} "
+            f"obstacles ({polygons} polygons, {discs} discs)"
+        )
+    bad = ~(np.isfinite(values) & (values >= 0.0) & (values <= MAX_SLACK))
+    if np.any(bad):
+        raise ValueError(
+            f"geometric slack = {values[bad][0]!r} is outside the allowed range [0, {MAX_SLACK:g}]"
+        )
+    return values
+
+
 class GeometricLevel:
-    """Eq. 9 on a scene: validity, clearance and propagation of SE2 poses."""
+    """Eq. 9 on a scene: validity, clearance and propagation of SE2 poses.
+
+    ``slack`` (length, default 0): the penetration depth a valid pose may have, one number for
+    every obstacle or one per obstacle in the scene's order (its polygons, then its discs), as
+    :func:`validity.geometric_slack.relaxation_slack` states it (see the module).
+    """
 
     name = "geometric"
     state_dim = 3
     control_dim = 3
 
-    def __init__(self, scene: Scene, step: float = DEFAULT_STEP):
+    def __init__(
+        self,
+        scene: Scene,
+        step: float = DEFAULT_STEP,
+        slack: float | Sequence[float] | np.ndarray = 0.0,
+    ):
         if not (math.isfinite(step) and 0.0 < step <= 1.0):
             raise ValueError(f"geometric step h = {step!r} is outside the allowed range (0, 1]")
         self.scene = scene
@@ -77,6 +162,11 @@ class GeometricLevel:
         self.arrays = SceneArrays.from_scene(scene)
         a = self.arrays
         self._geometry = (a.body, a.verts, a.counts, a.aabbs, a.circles)
+        self.slack = _obstacle_slacks(slack, a.verts.shape[0], a.circles.shape[0])
+        self._slacks = (
+            np.ascontiguousarray(self.slack[: a.verts.shape[0]]),
+            np.ascontiguousarray(self.slack[a.verts.shape[0] :]),
+        )
 
     def control_bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.scene.inputs.bounds()
@@ -87,7 +177,9 @@ class GeometricLevel:
 
     def is_valid(self, state: Sequence[float]) -> bool:
         return bool(
-            pose_is_valid(state[0], state[1], state[2], *self._geometry, self.arrays.bounds)
+            pose_is_valid(
+                state[0], state[1], state[2], *self._geometry, self.arrays.bounds, *self._slacks
+            )
         )
 
     def clearance(self, state: Sequence[float]) -> float:
@@ -108,5 +200,6 @@ class GeometricLevel:
             self.step,
             *self._geometry,
             self.arrays.bounds,
+            *self._slacks,
         )
         return (x, y, yaw)

@@ -231,3 +231,43 @@ def penetrates(
         if circle_signed_distance(cx, cy, r, world, n) < 0.0:
             return True
     return False
+
+
+@njit(cache=True)
+def penetrates_deeper_than(
+    world: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    polygon_slack: np.ndarray,
+    disc_slack: np.ndarray,
+) -> bool:
+    """True when the placed part overlaps some obstacle by more than that obstacle's slack
+    (length; ``polygon_slack (P,)``, ``disc_slack (C,)``): psi_n < -slack, the relaxed
+    non-penetration of Eq. 9 (issue 21).
+
+    A convex pair's penetration depth is the smallest overlap over its separating axes (the
+    edge normals of both), so the depth is at most the slack exactly when some axis separates
+    the pair to within it; a disc's depth is its radius minus its centre's signed distance.
+    Zero slacks are :func:`penetrates`, bit for bit.
+    """
+    n = world.shape[0]
+    x0, y0, x1, y1 = _box_of(world)
+    for p in range(verts.shape[0]):
+        b = aabbs[p]
+        if b[0] > x1 or b[2] < x0 or b[1] > y1 or b[3] < y0:
+            continue
+        floor = -polygon_slack[p]
+        if _max_separation(world, n, verts[p], counts[p]) >= floor:
+            continue
+        if _max_separation(verts[p], counts[p], world, n) >= floor:
+            continue
+        return True
+    for q in range(circles.shape[0]):
+        cx, cy, r = circles[q, 0], circles[q, 1], circles[q, 2]
+        if cx + r < x0 or cx - r > x1 or cy + r < y0 or cy - r > y1:
+            continue
+        if circle_signed_distance(cx, cy, r, world, n) < -disc_slack[q]:
+            return True
+    return False

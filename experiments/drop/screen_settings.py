@@ -18,11 +18,12 @@ class ScreenSettings:
     """The screen's settings: the dynamic level's step h (s) and longest drop (s); Wald's
     test per entry between success probabilities ``works_p`` (the verdict's) and
     ``fails_p`` (below the verdict's 0.8: the screen fails only clear failures, three
-    failed drops in a row, and leaves marginal designs to the verdict), with ``false_fails`` the probability of calling a ``works_p`` entry failing
-    (the screen's stated error: it prunes) and ``false_works`` of passing a ``fails_p`` one
-    on to the verdict (it only costs time); at most ``max_drops`` drops per entry (then the
-    screen has not decided, and the design goes on to the verdict); the perturbations of
-    the verdict's drops."""
+    failed drops in a row at the least, and leaves marginal designs to the verdict), with
+    ``false_fails`` the probability of calling a ``works_p`` entry failing (the screen's
+    stated error: it prunes) and ``false_works`` of passing a ``fails_p`` one on to the
+    verdict (it only costs time); at most ``max_drops`` drops per entry (then the screen has
+    not decided, and the design goes on to the verdict); the perturbations of the verdict's
+    drops."""
 
     step: float = SCREEN_STEP
     t_max: float = 10.0
