@@ -81,9 +81,7 @@ def check_ranges(
     ``checks`` (name, value, low, high) that is not a finite number in [low, high] (a whole
     number for the names in ``whole``)."""
     for name, value, low, high in checks:
-        if isinstance(value, bool) or not (
-            isinstance(value, int | float) and math.isfinite(value)
-        ):
+        if isinstance(value, bool) or not (isinstance(value, int | float) and math.isfinite(value)):
             raise ValueError(f"{prefix}.{name} = {value!r} must be a number")
         if name in whole and not isinstance(value, int):
             raise ValueError(f"{prefix}.{name} = {value!r} must be a whole number")
