@@ -34,7 +34,7 @@ import tempfile
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import numpy as np
 from ompl import base as ob
@@ -171,11 +171,14 @@ def benchmark_problem(
     experiment: str,
     parameters: Mapping[str, float | int | str] | None = None,
     settings: PlannerSettings | None = None,
+    level_options: Mapping[str, Any] | None = None,
 ) -> BenchmarkResult:
     """Benchmark ``planners`` on the problem of reaching the scene's goal from entry
     ``orientation`` at level ``level_name``, ``runs`` runs each: the problem of
     :func:`planners.plan.control_problem` (seeded by ``seed``, with ``settings``) through
     :func:`benchmark_control_problem`, which says what the arguments mean.
+    ``level_options`` go to the level (e.g. ``{"slack": ...}``: the geometric level as a
+    relaxation, :func:`validity.geometric_slack.relaxation_slack`).
 
     >>> from feeders.design import PRESETS
     >>> from feeders.feeder import build_feeder
@@ -191,7 +194,13 @@ def benchmark_problem(
     [('KPIECE1', 0), ('KPIECE1', 1), ('RRT', 0), ('RRT', 1)]
     """
     problem = control_problem(
-        scene, level_name, orientation, seed, settings or PlannerSettings(), count=True
+        scene,
+        level_name,
+        orientation,
+        seed,
+        settings or PlannerSettings(),
+        dict(level_options or {}),
+        count=True,
     )
     return benchmark_control_problem(problem, planners, runs, budget, seed, experiment, parameters)
 

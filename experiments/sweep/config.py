@@ -100,7 +100,6 @@ class Rung:
                 "level": self.level,
                 "screen": dict(self.verdict),
                 "perturbations": dict(self.perturbations),
-                "prunes": False,
             }
         budget: dict[str, Any] = {"time": self.time_s}
         if self.propagations is not None:
@@ -213,7 +212,7 @@ def _screen_rung(spec: Any, field_name: str) -> Rung:
     """The screen rung: its test's settings and the perturbations of its drops (default:
     the verdict's), checked by the classes that use them. A design the screen fails stops
     (a statistical prune, with the stated error); one it leaves undecided climbs on
-    (``prunes: false`` in the stored config: an undecided screen proves nothing)."""
+    (an undecided screen proves nothing)."""
     from experiments.drop.perturbations import Perturbations
     from experiments.drop.screen_settings import ScreenSettings
 

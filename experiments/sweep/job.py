@@ -306,6 +306,13 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
     seed = run_seed(int(job["seed"]), design_id, int(job["rung"]))
     parameters: dict[str, float | int | str] = dict(zip(PARAMETER_NAMES, values, strict=True))
     parameters.update(design_id=design_id, level=level, seed=seed)
+    level_options: dict[str, Any] = {}
+    if level == "geometric":  # a relaxation: contact and the made walls' tolerance granted
+        from experiments.drop.perturbations import Perturbations
+        from validity.geometric_slack import relaxation_slack
+
+        tolerance = Perturbations(**job["perturbations"]).tolerance
+        level_options["slack"] = relaxation_slack(scene, tolerance).total
     feasible = True
     for orientation in ORIENTATIONS:
         bench = benchmark_problem(
@@ -319,6 +326,7 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
             experiment=problem_name(job["name"], design_id, level, orientation),
             parameters={**parameters, "orientation": orientation},
             settings=PlannerSettings(**job["planner"]),
+            level_options=level_options,
         )
         result["logs"][orientation] = bench.log
         result["runs"].extend({"orientation": orientation, **run} for run in bench.runs)

@@ -320,8 +320,13 @@ def _prunes(rungs: list[dict[str, Any]]) -> dict[str, bool]:
     """Level -> whether a design not shown feasible there stopped climbing (outside the
     holdout), from the stored config: a planning rung's ``prunes`` (absent in a database
     written before it existed, whose sweep pruned on every planning rejection: True); the
-    passive rung always stops a design that does not work."""
-    return {str(r["level"]): bool(r.get("prunes", True)) or r["level"] == PASSIVE for r in rungs}
+    passive rung always stops a design that does not work; the screen stops the designs it
+    fails (a test: :data:`TESTED`), not the ones it leaves undecided."""
+    return {
+        str(r["level"]): r["level"] != SCREEN
+        and (bool(r.get("prunes", True)) or r["level"] == PASSIVE)
+        for r in rungs
+    }
 
 
 def _climbs(status: str | None, prunes: bool) -> bool:

@@ -56,7 +56,7 @@ def test_an_entry_is_solved_when_any_of_its_runs_reaches_the_goal_exactly() -> N
 def test_an_entry_no_run_solves_leaves_the_design_unknown_and_the_other_entry_is_skipped() -> None:
     """Not found within the budget proves nothing (a sampling planner, issue 21): the design
     is ``unknown``, never ``infeasible``, and the reason names the entry."""
-    result = _evaluate(3000)
+    result = _evaluate(2000)  # the relaxed geometric level solves at 3000 (issue 21)
     assert _solved(result, "heavy_leading") == [False] * RUNS
     assert _solved(result, "heavy_trailing") == []
     assert result["orientations"] == {"heavy_leading": False, "heavy_trailing": None}
