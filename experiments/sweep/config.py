@@ -30,6 +30,10 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
         # verdict: {rule: sprt, works_p: 0.95, fails_p: 0.8, error: 0.01, min_drops: 1, batch: 1}
     holdout: {fraction: 0.25, seed: 7}    # designs that climb every rung whatever their
                                           # verdicts: the sample that measures the pruning
+    audit: {fraction: 1.0, seed: 11}      # designs that reach the verdict whatever the
+                                          # rungs below it say (they climb no further unless
+                                          # they work): what the screen and any rung that
+                                          # stops designs before the verdict threw away
     workers: 2                            # processes (local executor)
     max_attempts: 2                       # worker deaths before a design is quarantined
 
@@ -125,6 +129,8 @@ class SweepConfig:
     planner: dict[str, Any] = field(default_factory=dict)
     holdout_fraction: float = 0.0
     holdout_seed: int = 0
+    audit_fraction: float = 0.0
+    audit_seed: int = 0
     workers: int = 2
     max_attempts: int = 2
 
@@ -138,6 +144,11 @@ class SweepConfig:
             "planner": dict(self.planner),
             "ladder": ladder,
             "holdout": {"fraction": self.holdout_fraction, "seed": self.holdout_seed},
+            **(
+                {"audit": {"fraction": self.audit_fraction, "seed": self.audit_seed}}
+                if self.audit_fraction > 0.0
+                else {}  # no audit: the document (and the results key) it had before audits
+            ),
             "workers": self.workers,
             "max_attempts": self.max_attempts,
         }
@@ -289,7 +300,17 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
     data = mapping_field(
         data,
         "config",
-        {"name", "designs", "feeder", "planner", "ladder", "holdout", "workers", "max_attempts"},
+        {
+            "name",
+            "designs",
+            "feeder",
+            "planner",
+            "ladder",
+            "holdout",
+            "audit",
+            "workers",
+            "max_attempts",
+        },
     )
     designs = mapping_field(data.get("designs"), "designs", {"count", "seed"})
     if "count" not in designs:
@@ -324,6 +345,9 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
     holdout = mapping_field(data.get("holdout", {}) or {}, "holdout", {"fraction", "seed"})
     fraction = number_field(holdout.get("fraction", 0.0), "holdout.fraction", 0.0, 1.0)
     holdout_seed = integer_field(holdout.get("seed", 0), "holdout.seed", 0, 2**31 - 1)
+    audit = mapping_field(data.get("audit", {}) or {}, "audit", {"fraction", "seed"})
+    audit_fraction = number_field(audit.get("fraction", 0.0), "audit.fraction", 0.0, 1.0)
+    audit_seed = integer_field(audit.get("seed", 0), "audit.seed", 0, 2**31 - 1)
     workers = integer_field(data.get("workers", 2), "workers", 1, 1024)
     attempts = integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100)
     return SweepConfig(
@@ -335,6 +359,8 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
         planner=dict(planner),
         holdout_fraction=fraction,
         holdout_seed=holdout_seed,
+        audit_fraction=audit_fraction,
+        audit_seed=audit_seed,
         workers=workers,
         max_attempts=attempts,
     )

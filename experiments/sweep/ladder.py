@@ -27,6 +27,7 @@ import io
 import sqlite3
 import tempfile
 from collections.abc import Callable
+from collections.abc import Set as AbstractSet
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +35,7 @@ import numpy as np
 
 from experiments.executors.cluster import run_dask
 from experiments.executors.local import LocalPool
+from experiments.names import PASSIVE
 from experiments.sweep import results_db
 from experiments.sweep.config import Rung, SweepConfig
 from experiments.sweep.job import SweepJob, evaluate_design, sweep_job, warm_up
@@ -51,6 +53,29 @@ def holdout_ids(count: int, fraction: float, seed: int) -> set[int]:
     return {int(i) for i in np.random.default_rng(seed).choice(count, size=n, replace=False)}
 
 
+def audited(config: SweepConfig) -> set[int]:
+    """The design ids of the audit (:attr:`SweepConfig.audit_fraction`), drawn as the
+    holdout is, with the audit's seed."""
+    return holdout_ids(config.count, config.audit_fraction, config.audit_seed)
+
+
+def goes_on(
+    config: SweepConfig,
+    rung: int,
+    status: str,
+    design_id: int,
+    holdout: AbstractSet[int],
+    audit: AbstractSet[int] = frozenset(),
+) -> bool:
+    """Whether design ``design_id`` goes on from ``rung`` after ``status``: :func:`climbs`
+    says so, or it is in the holdout (every rung), or in the audit below the passive rung
+    (the verdict)."""
+    if climbs(config.ladder[rung], status) or design_id in holdout:
+        return True
+    levels = [r.level for r in config.ladder]
+    return design_id in audit and PASSIVE in levels and rung < levels.index(PASSIVE)
+
+
 def climbs(rung: Rung, status: str) -> bool:
     """Whether a design outside the holdout goes on up after ``status`` at ``rung``: when it
     is feasible, or ``unknown`` at a rung that does not prune (:attr:`Rung.prunes`)."""
@@ -63,6 +88,7 @@ def pending_jobs(
     designs: dict[int, list[float]],
     holdout: set[int],
     done: dict[tuple[int, str], str],
+    audit: AbstractSet[int] = frozenset(),
 ) -> list[SweepJob]:
     """The next job of every design, from what is stored: each design climbs from rung 0
     while :func:`climbs` says so (or it is in the holdout and not quarantined); its first
@@ -74,7 +100,9 @@ def pending_jobs(
             if status is None:
                 jobs.append(sweep_job(config, design_id, values, rung))
                 break
-            if status == "quarantined" or (not climbs(r, status) and design_id not in holdout):
+            if status == "quarantined" or not goes_on(
+                config, rung, status, design_id, holdout, audit
+            ):
                 break
     return jobs
 
@@ -111,7 +139,8 @@ def run_sweep(
         designs = {i: [float(v) for v in points[i]] for i in range(config.count)}
         results_db.add_designs(db, ((i, i in holdout, v) for i, v in designs.items()))
         done = results_db.finished(db)
-        jobs = pending_jobs(config, designs, holdout, done)
+        audit = audited(config)
+        jobs = pending_jobs(config, designs, holdout, done, audit)
         if progress is not None:
             progress(
                 "start",
@@ -123,7 +152,8 @@ def run_sweep(
                 },
             )
         if jobs:
-            _climb(config, db, jobs, designs, holdout, executor, scheduler, progress, evaluate)
+            samples = (holdout, audit)
+            _climb(config, db, jobs, designs, samples, executor, scheduler, progress, evaluate)
     finally:
         db.close()
     return path
@@ -134,21 +164,21 @@ def _climb(
     db: sqlite3.Connection,
     jobs: list[SweepJob],
     designs: dict[int, list[float]],
-    holdout: set[int],
+    samples: tuple[set[int], set[int]],
     executor: str,
     scheduler: str | None,
     progress: Callable[[str, dict[str, Any]], None] | None,
     evaluate: Callable[[SweepJob], dict[str, Any]],
 ) -> None:
     top = len(config.ladder) - 1
+    holdout, audit = samples
 
     def on_done(job: SweepJob, result: dict[str, Any], attempts: int) -> list[SweepJob]:
         rung = int(job["rung"])
         results_db.record(db, result, rung, attempts)
         design_id = int(job["design_id"])
-        goes_on = climbs(config.ladder[rung], result["status"]) or design_id in holdout
         following = []
-        if goes_on and rung < top:
+        if goes_on(config, rung, result["status"], design_id, holdout, audit) and rung < top:
             following = [sweep_job(config, design_id, designs[design_id], rung + 1)]
         if progress is not None:
             progress(

@@ -204,13 +204,15 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
     if pipelines:
         parts.append("<h3>Which rungs are worth climbing</h3>")
         parts.append(
-            '<p class="note">Each order of the ladder\'s planning rungs before the passive '
-            "verdict, each rung pruning what it does not show feasible: worker seconds per "
-            "design, replayed on the holdout designs evaluated at every rung (holdout n: the "
-            "failing designs' planning costs are known only there); the fraction of the "
-            "designs that work which it would keep (recall), on the designs that work counted "
-            "(every design when none could have been stopped on its way, else the holdout's); "
-            "and its speed-up over the passive verdict alone.</p>"
+            '<p class="note">Each order of the ladder\'s other rungs before the passive '
+            "verdict, each rung stopping what it does not pass: worker seconds per design, "
+            "replayed on the designs evaluated at every rung of the pipeline whatever their "
+            "verdicts (n, on: the audit's when every rung stands below the verdict, else the "
+            "holdout's, since the failing designs' planning costs are known only there); the "
+            "fraction of the designs that work which it would keep (recall), on the designs "
+            "that work counted (every design when none could have been stopped on its way, "
+            "else the audit's or the holdout's); and its speed-up over the passive verdict "
+            "alone on the same designs.</p>"
         )
         parts.append(
             html_table(
@@ -218,7 +220,8 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                     "pipeline",
                     "s/design",
                     "95% CI",
-                    "holdout n",
+                    "n",
+                    "on",
                     "recall",
                     "95% CI",
                     "designs that work",
@@ -233,6 +236,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                         cell(p.get("cost_s"), ".3g"),
                         interval(p.get("cost_ci")),
                         cell(p.get("n")),
+                        str(p.get("basis", "the holdout")),
                         cell(p.get("recall"), ".2f"),
                         interval(p.get("recall_ci")),
                         cell(p.get("recall_n")),
@@ -243,7 +247,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                     ]
                     for p in pipelines
                 ],
-                text_columns=(0, 7, 8),
+                text_columns=(0, 4, 8, 9),
             )
         )
     best = with_verdicts(summary)

@@ -163,39 +163,46 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
     planners.sort(key=lambda p: (order.get(p["level"], 99), p["planner"]))
 
     holdout = [d for d, (h, _) in designs.items() if h]
+    # the audit: designs that reached the verdict whatever the rungs below it said (with the
+    # holdout, an unbiased sample of what those rungs stopped)
+    audit = sorted(set(holdout) | _audit_ids(config))
     truth_level = PASSIVE if PASSIVE in ladder else (ladder[-1] if ladder else None)
     pruning, ladder_pruning = [], []
     speedup = None
     pipelines: list[dict[str, Any]] = []
     thrown_away = None
     if truth_level is not None:
-        replay = _Replay(ladder, prunes, truth_level, holdout, status)
+        replay = _Replay(ladder, prunes, truth_level, (holdout, audit), status)
         judged = [d for d in holdout if (d, truth_level) in status]
-        truth = {d: status[(d, truth_level)] == "feasible" for d in judged}
+        audited = [d for d in audit if (d, truth_level) in status]  # holdout included
+        truth = {d: status[(d, truth_level)] == "feasible" for d in audited}
         for rung, level in enumerate(ladder):
             if level == truth_level:
                 continue
+            below = rung < ladder.index(truth_level)  # the audit reached the truth from here
+            sample = audited if below else judged
             own = [
-                (status[(d, level)] == "feasible", truth[d]) for d in judged if (d, level) in status
+                (status[(d, level)] == "feasible", truth[d]) for d in sample if (d, level) in status
             ]
             pruning.append(
                 {
                     "level": level,
                     "prunes": prunes[level],
                     **_confusion(own),
+                    "basis": _basis(holdout, audit) if below else "the holdout",
                     **replay.recall([level]),
                 }
             )
-            if rung < ladder.index(truth_level):
-                cumulative = [(kept_up_to(d, rung), truth[d]) for d in judged]
+            if below:
+                cumulative = [(kept_up_to(d, rung), truth[d]) for d in audited]
                 ladder_pruning.append({"level": level, **_confusion(cumulative)})
         speedup = _speedup(ladder, truth_level, designs, wall, kept_up_to, judged)
         if truth_level == PASSIVE:
-            pipelines = _pipelines(ladder, holdout, status, wall, replay)
-            thrown_away = _thrown_away(ladder, designs, holdout, status, kept_up_to)
+            pipelines = _pipelines(ladder, (holdout, audit), status, wall, replay)
+            thrown_away = _thrown_away(ladder, designs, audit, status, kept_up_to)
 
     stored_verdicts = results_db.verdicts(db)
-    passive = _passive_summary(ladder, holdout, status, wall, stored_verdicts)
+    passive = _passive_summary(ladder, (holdout, audit), status, wall, stored_verdicts)
     best = (
         _best_by_verdict(designs, stored_verdicts)
         if PASSIVE in ladder
@@ -266,12 +273,13 @@ def _best_by_verdict(designs, stored: dict[int, dict[str, Any]]) -> list[dict[st
     return best
 
 
-def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | None:
+def _passive_summary(ladder, samples, status, wall, stored) -> dict[str, Any] | None:
     """The passive rung's counts, the fraction of designs that work (over every design when
-    the rung is first, else over the holdout, whose designs reach it whatever the rungs below
-    say: an unbiased sample), and the verdicts' cost."""
+    the rung is first, else over the audit or the holdout, whose designs reach it whatever the
+    rungs below say: an unbiased sample), and the verdicts' cost."""
     if PASSIVE not in ladder:
         return None
+    holdout, audit = samples
     evaluated = [d for (d, level) in status if level == PASSIVE]
     decisions = {d: stored[d]["decision"] for d in evaluated if d in stored}
     # first, or after sound or tested rungs only: every design has a verdict, a proof that
@@ -284,7 +292,7 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
             if level in (*SOUND, *TESTED) and s == "infeasible" and (d, PASSIVE) not in status
         }
     )
-    basis = [*evaluated, *proven] if first else [d for d in holdout if (d, PASSIVE) in status]
+    basis = [*evaluated, *proven] if first else [d for d in audit if (d, PASSIVE) in status]
     works = sum(1 for d in basis if status.get((d, PASSIVE)) == "feasible")
     fraction = _ratio(works, len(basis))
     trials = [stored[d]["drops"] for d in decisions]
@@ -296,7 +304,7 @@ def _passive_summary(ladder, holdout, status, wall, stored) -> dict[str, Any] | 
         "degenerate": sum(1 for d in evaluated if status[(d, PASSIVE)] == "degenerate"),
         "works_fraction": fraction["value"],
         "works_ci": fraction["ci"],
-        "works_basis": "every design" if first else "the holdout",
+        "works_basis": "every design" if first else _basis(holdout, audit),
         "works_n": len(basis),
         "drops": drops,
         "mean_trials": sum(trials) / len(trials) if trials else None,
@@ -314,6 +322,22 @@ SOUND = (NECESSARY,)
 # verdict's own "fails" does, which is a test too), but they may hide a design that works, so
 # their recall and what they threw away are measured on the holdout.
 TESTED = (SCREEN,)
+
+
+def _audit_ids(config: dict[str, Any]) -> set[int]:
+    """The audit's design ids from the stored config (none before audits existed)."""
+    audit = config.get("audit") or {}
+    if not audit.get("fraction"):
+        return set()
+    from experiments.sweep.ladder import holdout_ids
+
+    count = int(config["designs"]["count"])
+    return holdout_ids(count, float(audit["fraction"]), int(audit.get("seed", 0)))
+
+
+def _basis(holdout: list[int], sample: list[int]) -> str:
+    """What a sample of designs that reached the verdict whatever is called."""
+    return "the audit" if len(sample) > len(holdout) else "the holdout"
 
 
 def _prunes(rungs: list[dict[str, Any]]) -> dict[str, bool]:
@@ -342,14 +366,15 @@ class _Replay:
     that fail: proven, or by a test with a stated error) and none of them is such a test;
     else the holdout's."""
 
-    def __init__(self, ladder, prunes, truth_level, holdout, status):
+    def __init__(self, ladder, prunes, truth_level, samples, status):
         self.ladder, self.prunes, self.truth = ladder, prunes, truth_level
-        self.holdout, self.status = holdout, status
+        self.holdout, self.audit = samples
+        self.status = status
         self.designs = sorted({d for d, _ in status})
 
     def census(self, needed: list[str]) -> bool:
-        if any(level in TESTED for level in needed):
-            return False  # its stops have no verdict: only the holdout shows what it lost
+        """No rung below the highest of ``needed`` and the truth could stop a design on its
+        way up but by a proof or a test (whose stops are failing designs)."""
         top = max(self.ladder.index(level) for level in [*needed, self.truth])
         return not any(
             self.prunes[level]
@@ -357,9 +382,25 @@ class _Replay:
             if level != self.truth and level not in (*SOUND, *TESTED)
         )
 
-    def recall(self, needed: list[str]) -> dict[str, Any]:
+    def pool(self, needed: list[str]) -> tuple[list[int], str]:
+        """The designs a recall of ``needed`` counts, and what they are called: every design
+        on a census with no test among ``needed``; the audit's (holdout included: they
+        reached the verdict whatever the rungs below it said) when the tests among
+        ``needed`` stand below the truth and either the rest is a census or every level is
+        below the truth; else the holdout's."""
+        truth = self.ladder.index(self.truth)
         census = self.census(needed)
-        pool = self.designs if census else self.holdout
+        tested = [level for level in needed if level in TESTED]
+        if census and not tested:
+            return self.designs, "every design"
+        below = all(self.ladder.index(level) < truth for level in needed)
+        tests_below = all(self.ladder.index(level) < truth for level in tested)
+        if below or (census and tests_below):
+            return self.audit, _basis(self.holdout, self.audit)
+        return self.holdout, "the holdout"
+
+    def recall(self, needed: list[str]) -> dict[str, Any]:
+        pool, basis = self.pool(needed)
         works = [
             d
             for d in pool
@@ -372,72 +413,80 @@ class _Replay:
             "recall": ratio["value"],
             "recall_ci": ratio["ci"],
             "recall_n": len(works),
-            "recall_basis": "every design" if census else "the holdout",
+            "recall_basis": basis,
             "thrown_away": lost,
         }
 
 
-def _pipelines(ladder, holdout, status, wall, replay: _Replay) -> list[dict[str, Any]]:
-    """What each pipeline would cost and keep: every ordered subset of the ladder's planning
-    rungs followed by the passive rung, each planning rung pruning what it does not show
-    feasible. Cost: replayed on the holdout designs evaluated at every rung (their stored
-    times), the mean worker seconds per design (seeded bootstrap 95% interval; ``n``
-    designs); a design pays for each rung it reaches. Recall: the fraction of the designs
-    that work that reach the passive rung, on :class:`_Replay`'s basis (Wilson 95%;
-    ``recall_n`` designs), with the ones it would throw away. The speed-up is over the
-    passive rung alone, with a paired bootstrap 95% interval (the same resampled designs
-    for both costs)."""
-    planning = [level for level in ladder if level != PASSIVE]
-    full = [d for d in holdout if all((d, level) in wall for level in ladder)]
-    rng = np.random.default_rng(0)
-    resample = rng.integers(0, len(full), (BOOTSTRAP_SAMPLES, len(full))) if full else None
+def _pipelines(ladder, samples, status, wall, replay: _Replay) -> list[dict[str, Any]]:
+    """What each pipeline would cost and keep: every ordered subset of the ladder's other
+    rungs followed by the passive rung, each rung pruning what it does not show feasible.
+    Cost: replayed on the designs evaluated at every rung of the pipeline whatever the
+    rungs' verdicts (the audit's when every rung stands below the verdict, else the
+    holdout's: ``n`` designs, ``basis``), from their stored times: the mean worker seconds
+    per design (seeded bootstrap 95% interval); a design pays for each rung it reaches.
+    Recall: the fraction of the designs that work that reach the passive rung, on
+    :class:`_Replay`'s basis (Wilson 95%; ``recall_n`` designs), with the ones it would
+    throw away. The speed-up is over the passive rung alone on the same designs, with a
+    paired bootstrap 95% interval (the same resampled designs for both costs)."""
+    holdout, audit = samples
+    others = [level for level in ladder if level != PASSIVE]
+    top = ladder.index(PASSIVE)
     out = []
-    alone = None
-    alone_means = None
-    for mask in range(2 ** len(planning)):
-        rungs = [level for k, level in enumerate(planning) if mask >> k & 1] + [PASSIVE]
-        costs = []
-        for d in full:
-            cost = 0.0
-            for level in rungs:
-                cost += wall[(d, level)]
-                if status[(d, level)] != "feasible":
-                    break
-            costs.append(cost)
+    for mask in range(2 ** len(others)):
+        rungs = [level for k, level in enumerate(others) if mask >> k & 1] + [PASSIVE]
+        pool = audit if all(ladder.index(level) < top for level in rungs[:-1]) else holdout
+        full = [d for d in pool if all((d, level) in wall for level in rungs)]
+        costs = np.array([_replayed_cost(d, rungs, status, wall) for d in full])
+        alone = np.array([wall[(d, PASSIVE)] for d in full])
         mean: float | None = None
         ci: list[float | None] = [None, None]
+        speedup: float | None = None
         speedup_ci: list[float | None] = [None, None]
-        if resample is not None:
-            samples = np.array(costs)
-            means = samples[resample].mean(1)
-            mean = float(samples.mean())
+        if len(full):
+            resample = np.random.default_rng(0).integers(
+                0, len(full), (BOOTSTRAP_SAMPLES, len(full))
+            )
+            means, alone_means = costs[resample].mean(1), alone[resample].mean(1)
+            mean = float(costs.mean())
             ci = [float(np.quantile(means, 0.025)), float(np.quantile(means, 0.975))]
-            if mask == 0:
-                alone_means = means
-            if alone_means is not None and bool(np.all(means > 0.0)):
+            if mean > 0.0:
+                speedup = float(alone.mean()) / mean
+            if bool(np.all(means > 0.0)):
                 ratios = alone_means / means
                 speedup_ci = [float(np.quantile(ratios, 0.025)), float(np.quantile(ratios, 0.975))]
-        if mask == 0:
-            alone = mean
         out.append(
             {
                 "rungs": rungs,
                 "cost_s": mean,
                 "cost_ci": ci,
                 "n": len(full),
+                "basis": _basis(holdout, pool),
                 **replay.recall(rungs[:-1]),
-                "speedup": alone / mean if alone and mean else None,
+                "speedup": speedup,
                 "speedup_ci": speedup_ci,
             }
         )
     return out
 
 
+def _replayed_cost(d: int, rungs: list[str], status, wall) -> float:
+    """Worker seconds design ``d`` would cost climbing ``rungs``, stopping at the first rung
+    it does not pass."""
+    cost = 0.0
+    for level in rungs:
+        cost += wall[(d, level)]
+        if status[(d, level)] != "feasible":
+            break
+    return cost
+
+
 def _thrown_away(ladder, designs, holdout, status, kept_up_to) -> dict[str, Any] | None:
     """With the passive rung above a rung that stopped designs: the designs outside the
-    holdout stopped before their verdict (``pruned``), and how many of them work, estimated
-    as ``pruned`` times the fraction that work of the holdout designs the ladder would have
-    stopped there (Wilson 95% interval): those designs have no verdict to count."""
+    ``holdout`` (here: the holdout and the audit, which reach the verdict whatever) stopped
+    before their verdict (``pruned``), and how many of them work, estimated as ``pruned``
+    times the fraction that work of the sample's designs the ladder would have stopped there
+    (Wilson 95% interval): those designs have no verdict to count."""
     top = ladder.index(PASSIVE)
     if all(level in SOUND for level in ladder[:top]):
         return None  # nothing below the verdict, or only proofs
@@ -457,6 +506,7 @@ def _thrown_away(ladder, designs, holdout, status, kept_up_to) -> dict[str, Any]
     low, high = wilson_interval(len(working), len(sample))
     share = len(working) / len(sample) if sample else None
     return {
+        "basis": _basis([d for d, (h, _) in designs.items() if h], holdout),
         "pruned": len(pruned),
         "holdout_pruned": len(sample),
         "holdout_pruned_working": working,
@@ -511,7 +561,8 @@ def summary_table(summary: dict[str, Any]) -> str:
             lines.append(
                 f"pruning by {p['level']}: precision {_pct(p['precision'])} "
                 f"[{_pct(p['precision_ci'][0])}, {_pct(p['precision_ci'][1])}] "
-                f"(holdout n={p['n']}), recall {_pct(p['recall'])} "
+                f"({p.get('basis', 'the holdout').removeprefix('the ')} n={p['n']}), "
+                f"recall {_pct(p['recall'])} "
                 f"[{_pct(p['recall_ci'][0])}, {_pct(p['recall_ci'][1])}] {_recall_basis(p)}"
             )
         if p.get("thrown_away"):
@@ -544,7 +595,8 @@ def summary_table(summary: dict[str, Any]) -> str:
             speedup += f" [{low:.2f}, {high:.2f}]"
         lost = pipe.get("thrown_away") or []
         lines.append(
-            f"pipeline {' -> '.join(pipe['rungs'])}: {cost} s/design (holdout n={pipe['n']}), "
+            f"pipeline {' -> '.join(pipe['rungs'])}: {cost} s/design "
+            f"({pipe.get('basis', 'the holdout').removeprefix('the ')} n={pipe['n']}), "
             f"recall {_pct(pipe['recall'])} [{_pct(pipe['recall_ci'][0])}, "
             f"{_pct(pipe['recall_ci'][1])}] {_recall_basis(pipe)}, speed-up {speedup}"
             + (f"; would throw away {', '.join(str(d) for d in lost)}" if lost else "")
@@ -580,18 +632,23 @@ def thrown_away_sentence(lost: dict[str, Any]) -> str:
     """What the ladder's pruning before the verdict threw away (``summary['thrown_away']``),
     as one sentence that says the count of working designs is an estimate."""
     working = lost.get("holdout_pruned_working") or []
-    head = (
-        f"the ladder stopped {lost['pruned']} designs outside the holdout before their passive "
-        "verdict"
-    )
+    basis = lost.get("basis", "the holdout")
+    noun = basis.removeprefix("the ")
     if lost.get("estimate") is None:
-        return f"{head}; how many of them work is not estimated (no holdout design was stopped)"
+        return (
+            f"the ladder stopped {lost['pruned']} designs outside {basis} before their passive "
+            f"verdict; how many of them work is not estimated (no {noun} design was stopped)"
+        )
+    found = f"{len(working)} of the {lost['holdout_pruned']} {noun} designs it stopped work" + (
+        f": {', '.join(str(d) for d in working)}" if working else ""
+    )
+    if lost["pruned"] == 0:
+        return f"the ladder stopped no design outside {basis} before its passive verdict; {found}"
     low, high = lost["ci"]
     return (
-        f"{head}; an estimated {lost['estimate']:.1f} [{low:.1f}, {high:.1f}] of them work "
-        f"(an estimate from the holdout: {len(working)} of the {lost['holdout_pruned']} "
-        "holdout designs it would have stopped work"
-        + (f": {', '.join(str(d) for d in working)})" if working else ")")
+        f"the ladder stopped {lost['pruned']} designs outside {basis} before their passive "
+        f"verdict; an estimated {lost['estimate']:.1f} [{low:.1f}, {high:.1f}] of them work "
+        f"(an estimate from {basis}: {found})"
     )
 
 
