@@ -1,0 +1,530 @@
+"""Device families: a parametric device written in YAML, built into a scene for any parameter
+vector (issue 24).
+
+The 12-parameter feeder of :mod:`feeders.feeder` is one device hard-coded in Python; a family
+says the same kind of thing as data, with every coordinate an expression of named parameters
+(:mod:`feeders.expressions`)::
+
+    name: fig1
+    parameters:                      # ordered: the order of the vector
+      theta: {low: 0.3, high: 0.9, default: 0.5}     # rad
+      pin_r: {low: 0.1, high: 0.4, default: 0.2}
+    pieces:                          # obstacles: convex polygons and discs
+      - polygon: [[0, 0], ["4*cos(theta)", "4*sin(theta)"], ...]
+        label: input chute floor
+      - disc: {centre: [pin_x, pin_y], radius: pin_r}
+    entries:                         # start pose (x, y, yaw) of the part's centre of mass
+      open_leading: ["1 + 3*cos(theta)", "2 + 3*sin(theta)", theta]
+    goal: {x: ["-b/2", "b/2"], y: [-3.7, -2.2], yaw: "-pi/2", yaw_tol: 0.35}
+    rules:                           # when a vector cannot be built, and why
+      - require: "pin_x + pin_r < 1.0"
+        reason: the pin touches the wall below the lip
+    bounds: [-2.5, 5, -4.4, 6]       # optional: x_min, x_max, y_min, y_max of the centre of mass
+    part: {length: 2.2, width: 0.7}  # optional, as in a scene file; also friction,
+                                     # restitution, gravity, inputs
+
+A family is read once (:func:`family_from_dict`, :func:`load_family`): every expression is
+compiled and may name only the family's parameters, and the default vector must build, else
+one :class:`FamilyError` line naming the file and field. :meth:`DeviceFamily.build` then makes
+the :class:`~feeders.scene.Scene` of any vector, or raises
+:class:`~feeders.feeder.DegenerateDesign` with the reason (a failed rule's own words, a piece
+that is not a convex polygon, a start inside the pieces...). Pure data and geometry, as the
+rest of :mod:`feeders`.
+"""
+
+from __future__ import annotations
+
+import keyword
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TypeAlias
+
+import numpy as np
+from shapely.geometry import LinearRing
+
+from feeders.design import DesignSpace
+from feeders.expressions import RESERVED, Expression, ExpressionError, compile_expression
+from feeders.feeder import DEFAULT_FRICTION, DegenerateDesign
+from feeders.fields import (
+    FieldError,
+    field_errors_as,
+    mapping_field,
+    name_field,
+    number_field,
+    read_yaml,
+    shown,
+)
+from feeders.part import DEFAULT_PEG, Peg
+from feeders.scene import Goal, InputSet, Pose, Scene
+from feeders.scene_checks import MAX_COORDINATE, MAX_STARTS, scene_problems
+from feeders.scene_yaml import ENVIRONMENT_KEYS, MAX_OBSTACLES, MAX_VERTICES, environment_from_dict
+from feeders.shapes import Obstacles, is_convex, signed_area
+
+MAX_PARAMETERS = 64
+MAX_RULES = 100
+MIN_AREA = 1e-9  # (length^2) a polygon piece of less area is degenerate
+
+_TOP_KEYS = {
+    "name",
+    "parameters",
+    "pieces",
+    "entries",
+    "goal",
+    "rules",
+    "bounds",
+} | ENVIRONMENT_KEYS
+
+
+class FamilyError(FieldError):
+    """A device family that cannot be read or whose default cannot be built; the message names
+    the file and the field."""
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A named design parameter of a family: its box ``[low, high]`` (what a sweep samples)
+    and its ``default`` inside it."""
+
+    name: str
+    low: float
+    high: float
+    default: float
+
+
+@dataclass(frozen=True)
+class PolygonPiece:
+    """A convex polygon obstacle whose vertices are expressions ``(x, y)``; either winding."""
+
+    label: str
+    vertices: tuple[tuple[Expression, Expression], ...]
+
+
+@dataclass(frozen=True)
+class DiscPiece:
+    """A disc obstacle (a pin) with expressions for its centre and radius."""
+
+    label: str
+    centre: tuple[Expression, Expression]
+    radius: Expression
+
+
+Piece: TypeAlias = PolygonPiece | DiscPiece
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A condition every buildable vector satisfies, and the ``reason`` a vector that does not
+    is refused with."""
+
+    require: Expression
+    reason: str
+
+
+@dataclass(frozen=True)
+class GoalSpec:
+    """The exit region as expressions: the centre of mass in ``x`` x ``y`` (each ``(low,
+    high)``), the yaw within ``yaw_tol`` of ``yaw`` (:class:`feeders.scene.Goal`)."""
+
+    x: tuple[Expression, Expression]
+    y: tuple[Expression, Expression]
+    yaw: Expression
+    yaw_tol: Expression
+
+
+@dataclass(frozen=True)
+class DeviceFamily:
+    """A parametric device: named parameters with their box and defaults, pieces, entries
+    (start pose per entry orientation), the exit goal, the rules of what can be built, the
+    optional state bounds of its scenes, ``scene_bounds`` (x_min, x_max, y_min, y_max of the
+    centre of mass; else the pieces' bounding box) and the environment a scene needs (part,
+    friction, restitution, gravity, inputs)."""
+
+    name: str
+    parameters: tuple[Parameter, ...]
+    pieces: tuple[Piece, ...]
+    entries: tuple[tuple[str, tuple[Expression, Expression, Expression]], ...]
+    goal: GoalSpec
+    rules: tuple[Rule, ...] = ()
+    scene_bounds: tuple[Expression, Expression, Expression, Expression] | None = None
+    part: Peg = DEFAULT_PEG
+    friction: float = DEFAULT_FRICTION
+    restitution: float = 0.3
+    gravity: tuple[float, float] = (0.0, -9.81)
+    inputs: InputSet = field(default_factory=InputSet)
+
+    @property
+    def vector_names(self) -> tuple[str, ...]:
+        """The parameters' names in the order of a vector."""
+        return tuple(p.name for p in self.parameters)
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(low, high)`` of the parameters' box, each shape (n,)."""
+        return (
+            np.array([p.low for p in self.parameters]),
+            np.array([p.high for p in self.parameters]),
+        )
+
+    def space(self) -> DesignSpace:
+        """The parameters' box as a :class:`~feeders.design.DesignSpace`, so
+        :func:`feeders.halton.halton_points` samples it (``halton_points(n, seed,
+        family.space())``)."""
+        return DesignSpace(tuple((p.low, p.high) for p in self.parameters))
+
+    def default(self) -> np.ndarray:
+        """The default vector, shape (n,)."""
+        return np.array([p.default for p in self.parameters])
+
+    def values(
+        self, vector: Mapping[str, float] | Sequence[float] | np.ndarray
+    ) -> dict[str, float]:
+        """``vector`` (a mapping of every parameter, or n numbers in :attr:`vector_names`
+        order) as a mapping of finite floats; ``ValueError`` naming the parameter otherwise. A
+        value may lie outside the box (a perturbation of a design at its edge): the rules say
+        what can be built."""
+        names = self.vector_names
+        if isinstance(vector, Mapping):
+            unknown = sorted(set(map(str, vector)) - set(names))
+            missing = [n for n in names if n not in vector]
+            if unknown or missing:
+                raise ValueError(
+                    f"{self.name}: parameters {shown(unknown)} are unknown and {missing} missing; "
+                    f"the family's parameters are {list(names)}"
+                )
+            raw = [vector[n] for n in names]
+        else:
+            raw = list(np.asarray(vector, dtype=float).reshape(-1))
+            if len(raw) != len(names):
+                raise ValueError(
+                    f"{self.name}: {len(raw)} values for {len(names)} parameters {list(names)}"
+                )
+        out = {}
+        for name, value in zip(names, raw, strict=True):
+            number = float(value)
+            if not math.isfinite(number):
+                raise ValueError(f"{self.name}: parameter {name} = {number!r} is not finite")
+            out[name] = number
+        return out
+
+    def build(self, vector: Mapping[str, float] | Sequence[float] | np.ndarray) -> Scene:
+        """The scene of this parameter vector, or :class:`DegenerateDesign` with the reason and
+        the parameters involved: the first rule that fails (in order), an expression that cannot
+        be evaluated there, a piece that is not a convex polygon of positive area or a disc of
+        positive radius, a goal box of no size, or a scene that is not physically sane
+        (:func:`feeders.scene_checks.scene_problems`: a start pose inside the pieces...)."""
+        values = self.values(vector)
+        try:
+            return self._build(values)
+        except ExpressionError as exc:
+            raise DegenerateDesign(str(exc), self.vector_names) from None
+
+    def _build(self, values: dict[str, float]) -> Scene:
+        for rule in self.rules:
+            if not rule.require.holds(values):
+                raise DegenerateDesign(rule.reason, _ordered(rule.require.names, self))
+        polygons: list[np.ndarray] = []
+        circles: list[tuple[float, float, float]] = []
+        labels_p: list[str] = []
+        labels_c: list[str] = []
+        for piece in self.pieces:
+            if isinstance(piece, PolygonPiece):
+                polygons.append(self._polygon(piece, values))
+                labels_p.append(piece.label)
+            else:
+                cx, cy = (e.evaluate(values) for e in piece.centre)
+                radius = piece.radius.evaluate(values)
+                names = _ordered(piece.radius.names | _names(piece.centre), self)
+                if radius <= 0.0:
+                    raise DegenerateDesign(
+                        f"{piece.label}: radius {radius:g} is not positive", names
+                    )
+                circles.append((cx, cy, radius))
+                labels_c.append(piece.label)
+        starts: dict[str, Pose] = {
+            name: (pose[0].evaluate(values), pose[1].evaluate(values), pose[2].evaluate(values))
+            for name, pose in self.entries
+        }
+        goal_values = [e.evaluate(values) for e in (*self.goal.x, *self.goal.y)]
+        yaw, yaw_tol = self.goal.yaw.evaluate(values), self.goal.yaw_tol.evaluate(values)
+        goal_names = _ordered(
+            _names((*self.goal.x, *self.goal.y, self.goal.yaw, self.goal.yaw_tol)), self
+        )
+        if not (goal_values[0] < goal_values[1] and goal_values[2] < goal_values[3]):
+            raise DegenerateDesign(
+                f"goal: the box x {goal_values[:2]}, y {goal_values[2:]} has no size", goal_names
+            )
+        if not (0.0 < yaw_tol <= math.pi and abs(yaw) <= math.pi):
+            raise DegenerateDesign(
+                f"goal: yaw = {yaw:g} must lie in [-pi, pi] and yaw_tol = {yaw_tol:g} in (0, pi]",
+                goal_names,
+            )
+        x_min, x_max, y_min, y_max = goal_values
+        goal = Goal(x_min, x_max, y_min, y_max, yaw, yaw_tol)
+        obstacles = Obstacles(
+            tuple(polygons),
+            np.array(circles, dtype=float).reshape(-1, 3),
+            tuple(labels_p + labels_c),
+        )
+        scene = Scene(
+            name=self.name,
+            obstacles=obstacles,
+            part=self.part,
+            bounds=self._bounds(values, obstacles),
+            starts=starts,
+            goal=goal,
+            gravity=self.gravity,
+            friction=self.friction,
+            inputs=self.inputs,
+            restitution=self.restitution,
+        )
+        problems = scene_problems(scene)
+        if problems:
+            raise DegenerateDesign(problems[0], self.vector_names)
+        return scene
+
+    def _polygon(self, piece: PolygonPiece, values: dict[str, float]) -> np.ndarray:
+        """The piece's vertices, counter-clockwise, checked convex, simple and of area."""
+        vertices = np.array([[x.evaluate(values), y.evaluate(values)] for x, y in piece.vertices])
+        names = _ordered(_names(e for xy in piece.vertices for e in xy), self)
+        if np.abs(vertices).max() > MAX_COORDINATE:
+            raise DegenerateDesign(
+                f"{piece.label}: a vertex lies beyond +-{MAX_COORDINATE:g}", names
+            )
+        area = signed_area(vertices)
+        if abs(area) < MIN_AREA:
+            raise DegenerateDesign(f"{piece.label}: the polygon has zero area", names)
+        if not LinearRing(vertices).is_simple:
+            raise DegenerateDesign(f"{piece.label}: the polygon crosses itself", names)
+        if area < 0:
+            vertices = vertices[::-1].copy()
+        if not is_convex(vertices, tol=1e-9):
+            raise DegenerateDesign(f"{piece.label}: the polygon is not convex", names)
+        return vertices
+
+    def _bounds(
+        self, values: dict[str, float], obstacles: Obstacles
+    ) -> tuple[float, float, float, float]:
+        if self.scene_bounds is not None:
+            x0, x1, y0, y1 = (e.evaluate(values) for e in self.scene_bounds)
+            if not (x0 < x1 and y0 < y1):
+                raise DegenerateDesign(
+                    f"bounds = {[x0, x1, y0, y1]}: need x_min < x_max and y_min < y_max",
+                    _ordered(_names(self.scene_bounds), self),
+                )
+            return (x0, x1, y0, y1)
+        points = [p for p in obstacles.polygons]
+        for cx, cy, radius in obstacles.circles:
+            points.append(np.array([[cx - radius, cy - radius], [cx + radius, cy + radius]]))
+        stacked = np.concatenate(points)
+        low, high = stacked.min(axis=0), stacked.max(axis=0)
+        return (float(low[0]), float(high[0]), float(low[1]), float(high[1]))
+
+
+def _names(expressions: Any) -> frozenset[str]:
+    return frozenset().union(*(e.names for e in expressions))
+
+
+def _ordered(names: frozenset[str], family: DeviceFamily) -> tuple[str, ...]:
+    """``names`` in the family's parameter order (for :class:`DegenerateDesign`)."""
+    return tuple(n for n in family.vector_names if n in names)
+
+
+def _parameters(spec: Any, prefix: str) -> tuple[Parameter, ...]:
+    field_name = f"{prefix}parameters"
+    if not isinstance(spec, dict) or not spec:
+        raise FamilyError(f"{field_name}: expected a mapping name: {{low, high, default}}")
+    if len(spec) > MAX_PARAMETERS:
+        raise FamilyError(
+            f"{field_name}: {len(spec)} parameters; at most {MAX_PARAMETERS} are allowed"
+        )
+    out = []
+    for name, item in spec.items():
+        where = f"{field_name}.{shown(name)}"
+        if (
+            not isinstance(name, str)
+            or not name.isidentifier()
+            or not name.isascii()
+            or keyword.iskeyword(name)
+            or name in RESERVED
+        ):
+            raise FamilyError(
+                f"{where}: a parameter name is an ASCII identifier (letters, digits, _), not a "
+                "Python keyword and not one of the language's names "
+                f"({', '.join(sorted(RESERVED))})"
+            )
+        item = mapping_field(item, where, {"low", "high", "default"})
+        for key in ("low", "high", "default"):
+            if key not in item:
+                raise FamilyError(f"{where}.{key} is required")
+        low = number_field(item["low"], f"{where}.low", -MAX_COORDINATE, MAX_COORDINATE)
+        high = number_field(item["high"], f"{where}.high", -MAX_COORDINATE, MAX_COORDINATE)
+        if not low < high:
+            raise FamilyError(f"{where}: need low < high, got low = {low:g}, high = {high:g}")
+        default = number_field(item["default"], f"{where}.default", low, high)
+        out.append(Parameter(name, low, high, default))
+    return tuple(out)
+
+
+def _pair(value: Any, field_name: str, known: tuple[str, ...]) -> tuple[Expression, Expression]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise FamilyError(f"{field_name}: expected [x, y], two numbers or expressions")
+    return (
+        compile_expression(value[0], f"{field_name}[0]", known),
+        compile_expression(value[1], f"{field_name}[1]", known),
+    )
+
+
+def _pieces(spec: Any, prefix: str, known: tuple[str, ...]) -> tuple[Piece, ...]:
+    field_name = f"{prefix}pieces"
+    if not isinstance(spec, list) or not spec:
+        raise FamilyError(
+            f"{field_name}: expected a non-empty list of {{polygon: ...}} or {{disc: ...}}"
+        )
+    if len(spec) > MAX_OBSTACLES:
+        raise FamilyError(f"{field_name}: {len(spec)} pieces; at most {MAX_OBSTACLES} are allowed")
+    pieces: list[Piece] = []
+    for i, item in enumerate(spec):
+        where = f"{field_name}[{i}]"
+        item = mapping_field(item, where, {"polygon", "disc", "label"})
+        label = name_field(item.get("label", where), f"{where}.label")
+        if ("polygon" in item) == ("disc" in item):
+            raise FamilyError(f"{where}: give exactly one of 'polygon' or 'disc'")
+        if "polygon" in item:
+            points = item["polygon"]
+            if not isinstance(points, list) or not 3 <= len(points) <= MAX_VERTICES:
+                raise FamilyError(
+                    f"{where}.polygon: expected a list of 3 to {MAX_VERTICES} [x, y] points "
+                    "of a convex polygon"
+                )
+            vertices = tuple(_pair(p, f"{where}.polygon[{k}]", known) for k, p in enumerate(points))
+            pieces.append(PolygonPiece(label, vertices))
+        else:
+            disc = mapping_field(item["disc"], f"{where}.disc", {"centre", "radius"})
+            if "centre" not in disc or "radius" not in disc:
+                raise FamilyError(f"{where}.disc: needs 'centre' and 'radius'")
+            centre = _pair(disc["centre"], f"{where}.disc.centre", known)
+            radius = compile_expression(disc["radius"], f"{where}.disc.radius", known)
+            pieces.append(DiscPiece(label, centre, radius))
+    return tuple(pieces)
+
+
+def _entries(
+    spec: Any, prefix: str, known: tuple[str, ...]
+) -> tuple[tuple[str, tuple[Expression, Expression, Expression]], ...]:
+    field_name = f"{prefix}entries"
+    if not isinstance(spec, dict) or not spec:
+        raise FamilyError(f"{field_name}: expected a mapping orientation: [x, y, yaw]")
+    if len(spec) > MAX_STARTS:
+        raise FamilyError(f"{field_name}: {len(spec)} entries; at most {MAX_STARTS} are allowed")
+    out = []
+    for name, pose in spec.items():
+        where = f"{field_name}.{name_field(name, f'{field_name} name')}"
+        if not isinstance(pose, list) or len(pose) != 3:
+            raise FamilyError(f"{where}: expected [x, y, yaw], three numbers or expressions")
+        x, y, yaw = (compile_expression(v, f"{where}[{k}]", known) for k, v in enumerate(pose))
+        out.append((str(name), (x, y, yaw)))
+    return tuple(out)
+
+
+def _goal(spec: Any, prefix: str, known: tuple[str, ...]) -> GoalSpec:
+    where = f"{prefix}goal"
+    spec = mapping_field(spec, where, {"x", "y", "yaw", "yaw_tol"})
+    for key in ("x", "y", "yaw", "yaw_tol"):
+        if key not in spec:
+            raise FamilyError(f"{where}.{key} is required")
+    return GoalSpec(
+        _pair(spec["x"], f"{where}.x", known),
+        _pair(spec["y"], f"{where}.y", known),
+        compile_expression(spec["yaw"], f"{where}.yaw", known),
+        compile_expression(spec["yaw_tol"], f"{where}.yaw_tol", known),
+    )
+
+
+def _rules(spec: Any, prefix: str, known: tuple[str, ...]) -> tuple[Rule, ...]:
+    field_name = f"{prefix}rules"
+    if spec is None:
+        return ()
+    if not isinstance(spec, list):
+        raise FamilyError(f"{field_name}: expected a list of {{require: condition, reason: text}}")
+    if len(spec) > MAX_RULES:
+        raise FamilyError(f"{field_name}: {len(spec)} rules; at most {MAX_RULES} are allowed")
+    out = []
+    for i, item in enumerate(spec):
+        where = f"{field_name}[{i}]"
+        item = mapping_field(item, where, {"require", "reason"})
+        if "require" not in item or "reason" not in item:
+            raise FamilyError(f"{where}: needs 'require' (a condition) and 'reason' (text)")
+        reason = item["reason"]
+        if not isinstance(reason, str) or not 1 <= len(reason.strip()) <= 300:
+            raise FamilyError(f"{where}.reason: expected text of 1 to 300 characters")
+        if any(c in reason for c in "\n\r"):
+            raise FamilyError(f"{where}.reason: one line of text (no line breaks)")
+        require = compile_expression(item["require"], f"{where}.require", known, condition=True)
+        out.append(Rule(require, reason.strip()))
+    return tuple(out)
+
+
+def _bounds_spec(
+    spec: Any, prefix: str, known: tuple[str, ...]
+) -> tuple[Expression, Expression, Expression, Expression] | None:
+    if spec is None:
+        return None
+    where = f"{prefix}bounds"
+    if not isinstance(spec, list) or len(spec) != 4:
+        raise FamilyError(f"{where}: expected [x_min, x_max, y_min, y_max], numbers or expressions")
+    x0, x1, y0, y1 = (compile_expression(v, f"{where}[{k}]", known) for k, v in enumerate(spec))
+    return (x0, x1, y0, y1)
+
+
+def family_from_dict(data: Any, prefix: str = "", name: str = "family") -> DeviceFamily:
+    """Read a family from a parsed YAML mapping; every field is checked and every expression
+    compiled against the parameters (errors name the field with ``prefix`` before it), and
+    the default vector must build (else :class:`FamilyError` with the reason)."""
+    with field_errors_as(FamilyError):
+        family = _family(data, prefix, name)
+    try:
+        family.build(family.default())
+    except DegenerateDesign as exc:
+        defaults = ", ".join(f"{p.name} = {p.default:g}" for p in family.parameters)
+        raise FamilyError(
+            f"{prefix}parameters: the defaults ({defaults}) cannot be built: {exc.reason}; "
+            "the defaults must satisfy every rule and give valid pieces, entries and goal"
+        ) from None
+    return family
+
+
+def _family(data: Any, prefix: str, name: str) -> DeviceFamily:
+    data = mapping_field(data, prefix.rstrip(".") or "family", _TOP_KEYS)
+    for key in ("parameters", "pieces", "entries", "goal"):
+        if key not in data:
+            raise FamilyError(f"{prefix}{key} is required")
+    family_name = name_field(data.get("name", name), f"{prefix}name")
+    parameters = _parameters(data["parameters"], prefix)
+    known = tuple(p.name for p in parameters)
+    env = environment_from_dict(data, prefix)
+    return DeviceFamily(
+        name=family_name,
+        parameters=parameters,
+        pieces=_pieces(data["pieces"], prefix, known),
+        entries=_entries(data["entries"], prefix, known),
+        goal=_goal(data["goal"], prefix, known),
+        rules=_rules(data.get("rules"), prefix, known),
+        scene_bounds=_bounds_spec(data.get("bounds"), prefix, known),
+        part=env["part"],
+        friction=env["friction"],
+        restitution=env["restitution"],
+        gravity=env["gravity"],
+        inputs=env["inputs"],
+    )
+
+
+def load_family(path: str | Path) -> DeviceFamily:
+    """Read a family file; any problem is one :class:`FamilyError` line naming the file and
+    the field."""
+    path = Path(path)
+    data = read_yaml(path, "device family", FamilyError)
+    try:
+        return family_from_dict(data, name=path.stem)
+    except FamilyError as exc:
+        raise FamilyError(f"{shown(path)}: {exc}") from None
