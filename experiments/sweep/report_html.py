@@ -35,13 +35,15 @@ def _speedup_text(speedup: dict | None) -> str:
 
 
 def _pruning_table(rows: list[dict]) -> str:
-    """Each level's precision on the holdout (``n``, its confusion counts) and its recall on
+    """Each level's precision on the designs it was measured on (``n``, ``basis``: the
+    audit's below the verdict, else the holdout's; its confusion counts) and its recall on
     the designs that work it rests on (``recall_n``, which designs; a summary written before
     those existed: the holdout's)."""
     return html_table(
         [
             "level",
-            "holdout n",
+            "n",
+            "on",
             "tp",
             "fp",
             "fn",
@@ -56,7 +58,9 @@ def _pruning_table(rows: list[dict]) -> str:
         [
             [
                 str(row.get("level", "")),
-                *(cell(row.get(k)) for k in ("n", "tp", "fp", "fn", "tn")),
+                cell(row.get("n")),
+                str(row.get("basis", "the holdout")),
+                *(cell(row.get(k)) for k in ("tp", "fp", "fn", "tn")),
                 cell(row.get("precision"), ".3f"),
                 interval(row.get("precision_ci")),
                 cell(row.get("recall"), ".3f"),
@@ -66,7 +70,7 @@ def _pruning_table(rows: list[dict]) -> str:
             ]
             for row in rows
         ],
-        text_columns=(0, 11),
+        text_columns=(0, 2, 12),
     )
 
 
@@ -238,10 +242,11 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     if pruning:
         parts.append(
             f"<p>Each other level's own verdict against {e(truth)}'s. Precision needs the "
-            "failing designs' results: on the holdout (holdout n). Recall, what pruning risks, "
-            "rests on the designs that work counted in its row: every design, when none could "
-            "have been stopped on its way to the level (the passive rung first, planning rungs "
-            "that do not prune), else the holdout's.</p>"
+            "failing designs' results: on the audit for a rung below the verdict (its designs "
+            "reach the verdict whatever), else on the holdout (n, on). Recall, what pruning "
+            "risks, rests on the designs that work counted in its row: every design, when none "
+            "could have been stopped on its way to the level (planning rungs that do not "
+            "prune, a proof's or a test's stops), else the audit's or the holdout's.</p>"
         )
         parts.append(_pruning_table(pruning))
     else:
