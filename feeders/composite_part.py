@@ -202,11 +202,12 @@ def _polygon_moments(v: np.ndarray) -> tuple[float, np.ndarray, float]:
     return area, o + np.array([cx, cy]), polar - area * (cx * cx + cy * cy)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class CompositePart:
     """A rigid planar part: convex polygons (``(K_i, 2)`` CCW, part frame) and discs
     (``(D, 3)``: cx, cy, radius), with their densities (mass per area) and ``labels`` naming
-    each polygon then each disc in errors (``part.pieces[2]``).
+    each polygon then each disc in errors (``part.pieces[2]``). Compared by identity (its
+    fields are arrays, whose ``==`` is element-wise).
 
     Computed: ``mass``, ``com`` (part frame), ``inertia`` about the centre of mass
     (mass x length^2) and ``area``. A polygon given clockwise is stored counter-clockwise.
