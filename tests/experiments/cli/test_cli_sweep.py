@@ -68,11 +68,11 @@ def test_report_of_a_directory_without_a_sweep_says_so(tmp_path: Path) -> None:
 
 
 def test_the_shipped_configs_load_and_climb_the_whole_ladder() -> None:
-    """The default puts the necessary conditions and then the passive verdict first (sound
-    pruning only, docs/necessary.md and docs/verdict.md); the paper's config climbs the
-    paper's order with the verdict on top."""
+    """The default puts the screen and then the passive verdict first (stops only on tests
+    with stated errors, docs/verdict.md); the paper's config climbs the paper's order with
+    the verdict on top."""
     planning = ["geometric", "kinematic", "dynamic"]
-    expected = {"default": ["necessary", "passive", *planning], "paper": [*planning, "passive"]}
+    expected = {"default": ["screen", "passive", *planning], "paper": [*planning, "passive"]}
     for name, ladder in expected.items():
         config = load_config(name)
         assert [r.level for r in config.ladder] == ladder

@@ -42,13 +42,16 @@ def test_a_wilson_configs_results_key_is_as_before_and_the_sprt_changes_it():
     from experiments.config_files import resolve_config
     from experiments.sweep.config import config_from_dict, load_config
 
-    wilson = load_config(resolve_config("default"))
+    default = load_config(resolve_config("default")).to_dict()
+    # the default as it was before the screen, the audit and the SPRT: the Wilson rule
+    default["ladder"] = [r for r in default["ladder"] if r["level"] != "screen"]
+    default.pop("audit")
+    passive = next(r for r in default["ladder"] if r["level"] == "passive")
+    passive["verdict"] = {"target": 0.9, "min_drops": 10, "batch": 10, "max_drops": 200}
+    wilson = config_from_dict(default)
     rung = next(r for r in wilson.ladder if r.level == "passive")
     assert set(rung.verdict) == {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
-    data = wilson.to_dict()
-    data["ladder"] = [r for r in data["ladder"] if r["level"] != "necessary"]
-    before = config_from_dict(data)  # the default's ladder before the necessary rung
-    assert before.results_key() == "ed7814f1f940c9e3"  # the default sweep's key before
+    assert wilson.results_key() == "ed7814f1f940c9e3"  # the default sweep's key before
     data = wilson.to_dict()
     passive = next(r for r in data["ladder"] if r["level"] == "passive")
     passive["verdict"].update(rule="sprt", min_drops=1, batch=1)
