@@ -3,7 +3,9 @@ scenes beside MuJoCo and pymunk (when installed), the feeder's convergence, the 
 against its verdicts' error, speed tables; or, with ``--level``, one level's detailed speed;
 or, with ``--agreement``, the same perturbed feeder drops in partfeeder, MuJoCo and pymunk and
 how they agree (:mod:`experiments.bench.agreement`); or, with ``--trial``, the cost of one
-verdict trial and its parts (:mod:`experiments.bench.trial_cost`)."""
+verdict trial and its parts (:mod:`experiments.bench.trial_cost`); or, with ``--verdict``, the
+cost of deciding designs by the full verdict alone and by the screen then the verdict
+(:mod:`experiments.bench.verdict_cost`)."""
 
 from __future__ import annotations
 
@@ -52,6 +54,17 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         metavar="N",
         help="instead: median ms of a verdict trial of table3 over N trials (default 200) and "
         "each part's share, as text (no files)",
+    )
+    bench.add_argument(
+        "--verdict",
+        type=int,
+        nargs="?",
+        const=200,
+        default=None,
+        metavar="N",
+        help="instead: the worker time of deciding the first N Halton designs (default 200) by "
+        "the full verdict alone (Wilson, SPRT) and by the screen then the SPRT verdict, in one "
+        "run, with their ratios, as text (no files)",
     )
     bench.add_argument("--json", action="store_true", help="print the data as JSON")
     agreement = bench.add_argument_group(
@@ -109,6 +122,17 @@ def _trial(args: argparse.Namespace) -> int:
 
     results = trial_cost("table3", args.trial, args.seed)
     print(json.dumps(results, indent=2) if args.json else format_trial_cost(results))
+    return 0
+
+
+def _verdict(args: argparse.Namespace) -> int:
+    """``--verdict N``: the full verdict alone against the screened one (issue 21)."""
+    check_count(args.verdict, "--verdict", 100_000)
+    check_seed(args.seed)
+    from experiments.bench.verdict_cost import format_verdict_cost, verdict_cost
+
+    results = verdict_cost(args.verdict, args.seed)
+    print(json.dumps(results, indent=2) if args.json else format_verdict_cost(results))
     return 0
 
 
@@ -184,6 +208,8 @@ def run(args: argparse.Namespace) -> int:
         return _agreement(args)
     if args.trial is not None:
         return _trial(args)
+    if args.verdict is not None:
+        return _verdict(args)
     repeats = args.repeats if args.repeats is not None else (2 if args.quick else 5)
     if not 1 <= repeats <= 1000:
         raise UsageError(f"--repeats = {repeats} is outside the allowed range [1, 1000]")
