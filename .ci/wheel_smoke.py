@@ -68,6 +68,10 @@ SHORTER: dict[str, tuple[str, str]] = {
         "partfeeder feasibility --designs 6 --levels kinematic,geometric --out feas",
         "minutes: 6 of the 500 designs",
     ),
+    "partfeeder bench --verdict": (
+        "partfeeder bench --verdict 20",
+        "~1 min: 20 of the 200 designs",
+    ),
 }
 
 # Configs written into the working directory: name -> (the shipped config it is made from,
@@ -182,6 +186,7 @@ CLAIMS: dict[str, Check] = {
         "optimize/optimize/evaluations.sqlite", "optimize/optimize/figures/overlay_*.png"
     ),
     "partfeeder bench --trial": contains(r"trial"),
+    "partfeeder bench --verdict": contains(r"^  wilson / screen \+ sprt: "),
     "partfeeder run --json": is_json,
     "partfeeder plan --design table3 --orientation both --time 5 --seed 1 --out out": both(
         plan_solved, files("out/*.png")
