@@ -162,11 +162,22 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
         return []
     parts = ["<h2>Passive verdict: does the feeder work?</h2>"]
     target = e(cell(passive.get("target")))
-    parts.append(
-        "<p>A design works when, over drops perturbed as a real feeder sees them, the Wilson "
-        f"95% lower bound of each entry's success probability clears {target}; trials stop "
-        "as soon as that is decided either way.</p>"
-    )
+    rule = passive.get("rule") or {}
+    if rule.get("rule") == "sprt":
+        parts.append(
+            "<p>A design works when, over drops perturbed as a real feeder sees them, Wald's "
+            "sequential test of each entry accepts a success probability of "
+            f"{e(cell(rule.get('works_p')))} over {e(cell(rule.get('fails_p')))} (error "
+            f"{e(cell(rule.get('error')))} each way): it looks after every trial, and stops as "
+            "soon as both entries work or one fails (docs/verdict.md: its exact operating "
+            "characteristic). The intervals are Wilson 95% intervals of the same drops.</p>"
+        )
+    else:
+        parts.append(
+            "<p>A design works when, over drops perturbed as a real feeder sees them, the "
+            f"Wilson 95% lower bound of each entry's success probability clears {target}; "
+            "trials stop as soon as that is decided either way.</p>"
+        )
     parts.append(
         html_table(
             [
@@ -218,36 +229,28 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
             html_table(
                 [
                     "pipeline",
-                    "s/design",
-                    "95% CI",
+                    "s/design (95% CI)",
                     "n",
                     "on",
-                    "recall",
-                    "95% CI",
-                    "designs that work",
-                    "of",
+                    "recall (95% CI)",
+                    "of the designs that work",
                     "would throw away",
-                    "speed-up",
-                    "95% CI",
+                    "speed-up (95% CI)",
                 ],
                 [
                     [
                         " → ".join(str(r) for r in p.get("rungs") or []),
-                        cell(p.get("cost_s"), ".3g"),
-                        interval(p.get("cost_ci")),
+                        _with_interval(cell(p.get("cost_s"), ".3g"), p.get("cost_ci"), ".3g"),
                         cell(p.get("n")),
-                        str(p.get("basis", "the holdout")),
-                        cell(p.get("recall"), ".2f"),
-                        interval(p.get("recall_ci")),
-                        cell(p.get("recall_n")),
-                        str(p.get("recall_basis", "the holdout")),
+                        str(p.get("basis", "the holdout")).removeprefix("the "),
+                        _with_interval(cell(p.get("recall"), ".2f"), p.get("recall_ci")),
+                        f"{cell(p.get('recall_n'))}, {p.get('recall_basis', 'the holdout')}",
                         ", ".join(str(d) for d in p.get("thrown_away") or []) or DASH,
-                        cell(p.get("speedup"), ".2f"),
-                        interval(p.get("speedup_ci")),
+                        _with_interval(cell(p.get("speedup"), ".2f"), p.get("speedup_ci")),
                     ]
                     for p in pipelines
                 ],
-                text_columns=(0, 4, 8, 9),
+                text_columns=(0, 3, 5, 6),
             )
         )
     best = with_verdicts(summary)
@@ -377,3 +380,8 @@ def comparison_of(
     order = [r["label"] for r in fresh_ranking(comparison)]
     comparison["designs"].sort(key=lambda d: order.index(str(d["label"])))
     return comparison
+
+
+def _with_interval(value: str, ci: object, spec: str = ".2f") -> str:
+    """A value and its 95% interval in one cell that does not wrap inside the interval."""
+    return f"{value}\u00a0{interval(ci, spec)}".replace(", ", ",\u00a0")

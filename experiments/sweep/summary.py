@@ -203,6 +203,9 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
 
     stored_verdicts = results_db.verdicts(db)
     passive = _passive_summary(ladder, (holdout, audit), status, wall, stored_verdicts)
+    if passive is not None:
+        rung = next(r for r in config["ladder"] if r["level"] == PASSIVE)
+        passive["rule"] = {"rule": "wilson", **(rung.get("verdict") or {})}
     best = (
         _best_by_verdict(designs, stored_verdicts)
         if PASSIVE in ladder
