@@ -66,6 +66,12 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         "the full verdict alone (Wilson, SPRT) and by the screen then the SPRT verdict, in one "
         "run, with their ratios, as text (no files)",
     )
+    bench.add_argument(
+        "--halton-seed",
+        type=int,
+        default=0,
+        help="--verdict's designs: the Halton seed (default 0, the default sweep's)",
+    )
     bench.add_argument("--json", action="store_true", help="print the data as JSON")
     agreement = bench.add_argument_group(
         "agreement", "the same perturbed drops in partfeeder, MuJoCo and pymunk (issue 26)"
@@ -128,10 +134,10 @@ def _trial(args: argparse.Namespace) -> int:
 def _verdict(args: argparse.Namespace) -> int:
     """``--verdict N``: the full verdict alone against the screened one (issue 21)."""
     check_count(args.verdict, "--verdict", 100_000)
-    check_seed(args.seed)
+    check_count(args.halton_seed, "--halton-seed", 2**31 - 1, low=0)
     from experiments.bench.verdict_cost import format_verdict_cost, verdict_cost
 
-    results = verdict_cost(args.verdict, args.seed)
+    results = verdict_cost(args.verdict, args.halton_seed)
     print(json.dumps(results, indent=2) if args.json else format_verdict_cost(results))
     return 0
 
