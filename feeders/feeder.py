@@ -41,6 +41,8 @@ START_CLEARANCE = 0.05  # gap between the part and the cap at the top of the inp
 # The feeder's two entries: the peg enters heavy end first or last; a design must serve both.
 ORIENTATIONS = ("heavy_leading", "heavy_trailing")
 GOAL_YAW_TOL = 0.35  # rad: "heavy end down" within 20 degrees
+CLEARANCE = 1e-9  # length: a part this far from every wall is clear of their union
+CLEARANCE_SLACK = 1e-9  # length: beyond the rounding of a projection gap (coordinates ~10)
 
 
 class DegenerateDesign(ValueError):
@@ -168,13 +170,9 @@ def _clip(poly: np.ndarray, point: np.ndarray, normal: np.ndarray) -> np.ndarray
     return np.array(kept)
 
 
-def walls(edges: list[Edge], thickness: float = WALL_THICKNESS) -> list[np.ndarray]:
-    """One convex wall per edge, mitred where the solid has a convex corner.
-
-    Where the interior turns right (a corner of solid material pointing into the free space,
-    e.g. the lip), a plain quad would stick out past the neighbouring edge; both walls are
-    clipped along the corner's bisector so they meet there and never enter the interior.
-    """
+def walls_reference(edges: list[Edge], thickness: float = WALL_THICKNESS) -> list[np.ndarray]:
+    """:func:`walls` in numpy, as it was before the kernel: the reference the kernel is
+    tested against, and what runs where a clip leaves no vertex (which it cannot clip)."""
     quads = [wall_quad(e, thickness) for e in edges]
     normals = [_outward_normal(e) for e in edges]
     n = len(edges)
@@ -194,6 +192,31 @@ def walls(edges: list[Edge], thickness: float = WALL_THICKNESS) -> list[np.ndarr
     return quads
 
 
+def _mitred(segments: np.ndarray, thickness: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """The walls of the edges ``segments`` from the kernel: padded vertices and counts, or
+    None where a clip left no vertex (:func:`walls_reference` decides)."""
+    from feeders.wall_kernel import mitred_walls  # numba on first build, not on import
+
+    lengths = np.array([math.hypot(x1 - x0, y1 - y0) for (x0, y0), (x1, y1) in segments.tolist()])
+    verts, counts = mitred_walls(segments, lengths, thickness)
+    return None if counts.min() < 0 else (verts, counts)
+
+
+def walls(edges: list[Edge], thickness: float = WALL_THICKNESS) -> list[np.ndarray]:
+    """One convex wall per edge, mitred where the solid has a convex corner.
+
+    Where the interior turns right (a corner of solid material pointing into the free space,
+    e.g. the lip), a plain quad would stick out past the neighbouring edge; both walls are
+    clipped along the corner's bisector so they meet there and never enter the interior.
+    Bit for bit :func:`walls_reference` (``feeders.wall_kernel``).
+    """
+    mitred = _mitred(_segments(edges), thickness)
+    if mitred is None:
+        return walls_reference(edges, thickness)
+    verts, counts = mitred
+    return [verts[i, :k] for i, k in enumerate(counts.tolist())]
+
+
 def protuberance(design: DesignParameters) -> tuple[np.ndarray, np.ndarray]:
     """The finger (CCW rectangle from inside the left wall to the tip) and its tip disc."""
     p = design
@@ -209,22 +232,29 @@ def _segments(edges: list[Edge]) -> np.ndarray:
     return np.array([(e.start, e.end) for e in edges], dtype=np.float64)
 
 
-def _check_crossings(edges: list[Edge], lines: np.ndarray) -> None:
+def _check_crossings(edges: list[Edge], segments: np.ndarray) -> None:
     """:class:`DegenerateDesign` for the first pair (in edge order) of edges that meet other
-    than at a shared end. ``lines``: the edges as shapely line strings. Pairs whose bounding
-    boxes are apart cannot meet (GEOS finds no intersection there either) and are not asked."""
-    ends = _segments(edges)
-    low, high = ends.min(axis=1), ends.max(axis=1)
-    first, second = np.triu_indices(len(edges), 1)
-    near = np.all(low[first] <= high[second], axis=1) & np.all(low[second] <= high[first], axis=1)
-    first, second = first[near], second[near]
-    meets = shapely.intersection(lines[first], lines[second])
-    for i, j, inter in zip(first.tolist(), second.tolist(), meets, strict=True):
-        if inter.is_empty:
-            continue
-        adjacent = j == i + 1 or (i == 0 and j == len(edges) - 1)
-        if adjacent and inter.geom_type == "Point":
-            continue
+    than at a shared end, as shapely's intersection says. ``segments``: the edges ``(n, 2,
+    2)``. Pairs whose bounding boxes are apart cannot meet (GEOS finds no intersection there
+    either) and are not asked; pairs exact orientation tests decide are not asked either
+    (``feeders.wall_kernel.first_suspect_pair``), the others are asked of shapely."""
+    from feeders.wall_kernel import UNSURE, first_suspect_pair  # numba on first build
+
+    after = -1
+    while True:
+        k, i, j, status = first_suspect_pair(segments, after)
+        if k < 0:
+            return
+        after = k
+        if status == UNSURE:
+            inter = shapely.intersection(
+                shapely.LineString(segments[i]), shapely.LineString(segments[j])
+            )
+            if inter.is_empty:
+                continue
+            adjacent = j == i + 1 or (i == 0 and j == len(edges) - 1)
+            if adjacent and inter.geom_type == "Point":
+                continue
         names = tuple(dict.fromkeys(edges[i].parameters + edges[j].parameters))
         raise DegenerateDesign(
             f"walls cross: the {edges[i].label} meets the {edges[j].label}", names
@@ -235,7 +265,7 @@ def _clearly_apart(shapes: list[Polygon], pieces: list[np.ndarray], disc: np.nda
     """Whether every polygon of ``shapes`` is more than ``1e-9`` (length) from every convex
     piece and from the disc (x, y, r), so that it overlaps their union nowhere. False says
     nothing (the union decides)."""
-    gap = 1e-9
+    gap = CLEARANCE
     k = max(len(q) for q in pieces)
     padded = np.array([np.concatenate([q, np.repeat(q[-1:], k - len(q), axis=0)]) for q in pieces])
     solids = shapely.polygons(padded)  # repeated closing vertices: the same convex pieces
@@ -248,11 +278,22 @@ def _clearly_apart(shapes: list[Polygon], pieces: list[np.ndarray], disc: np.nda
     return True
 
 
-def _pose_polygon(part: Peg, pose: Pose) -> Polygon:
+def _with_finger(wall_verts: np.ndarray, finger: np.ndarray) -> np.ndarray:
+    """The walls' padded vertices ``(n, WALL_CAPACITY, 2)`` with the finger's after them."""
+    out = np.zeros((len(wall_verts) + 1, wall_verts.shape[1], 2))
+    out[:-1] = wall_verts
+    out[-1, : len(finger)] = finger
+    return out
+
+
+def _pose_vertices(part: Peg, pose: Pose) -> np.ndarray:
     c, s = math.cos(pose[2]), math.sin(pose[2])
     body = part.body_vertices()
-    world = body @ np.array([[c, s], [-s, c]]) + np.array(pose[:2])
-    return Polygon(world)
+    return body @ np.array([[c, s], [-s, c]]) + np.array(pose[:2])
+
+
+def _pose_polygon(part: Peg, pose: Pose) -> Polygon:
+    return Polygon(_pose_vertices(part, pose))
 
 
 def build_feeder(
@@ -299,8 +340,9 @@ def build_feeder(
     if not (math.isfinite(roof_rise) and 0.0 <= roof_rise <= 10.0):
         raise ValueError(f"roof_rise = {roof_rise!r} is outside the allowed range [0, 10]")
     edges = interior_edges(p, part, roof_rise)
-    lines = shapely.linestrings(_segments(edges))
-    _check_crossings(edges, lines)
+    segments = _segments(edges)
+    _check_crossings(edges, segments)
+    lines = shapely.linestrings(segments)
     outline = np.array([e.start for e in edges])
     interior = Polygon(outline)
     if not interior.is_valid or interior.area <= 0:
@@ -324,7 +366,12 @@ def build_feeder(
                 tuple(dict.fromkeys(("fx", "fy", "r", *edge.parameters))),
             )
 
-    wall_polygons = walls(edges)
+    mitred = _mitred(segments, WALL_THICKNESS)
+    if mitred is None:
+        wall_polygons = walls_reference(edges)
+    else:
+        wall_verts, wall_counts = mitred
+        wall_polygons = [wall_verts[i, :k] for i, k in enumerate(wall_counts.tolist())]
     labels = [e.label for e in edges] + ["protuberance finger", "protuberance tip"]
     obstacles = Obstacles(tuple([*wall_polygons, finger]), tip.reshape(1, 3), tuple(labels))
 
@@ -337,16 +384,27 @@ def build_feeder(
         com = centre + part.com_offset * np.array([math.cos(yaw), math.sin(yaw)])
         starts[orientation] = (float(com[0]), float(com[1]), yaw)
 
+    from feeders.wall_kernel import surely_apart  # numba on first build, not on import
+
     pieces = [*wall_polygons, finger]
-    placed = {o: _pose_polygon(part, pose) for o, pose in starts.items()}
-    if not _clearly_apart(list(placed.values()), pieces, tip):
-        solid = shapely.unary_union([Polygon(w) for w in pieces] + [tip_point.buffer(p.r)])
-        for orientation, shape in placed.items():
-            if shape.intersection(solid).area > 1e-9:
-                raise DegenerateDesign(
-                    f"the part does not fit at the top of the input chute ({orientation})",
-                    ("a", "d", "theta"),
-                )
+    corners = np.array([_pose_vertices(part, pose) for pose in starts.values()])
+    if mitred is None or not surely_apart(
+        corners,
+        _with_finger(wall_verts, finger),
+        np.append(wall_counts, len(finger)),
+        tip,
+        CLEARANCE,
+        CLEARANCE_SLACK,
+    ):
+        placed = {o: Polygon(c) for o, c in zip(starts, corners, strict=True)}
+        if not _clearly_apart(list(placed.values()), pieces, tip):
+            solid = shapely.unary_union([Polygon(w) for w in pieces] + [tip_point.buffer(p.r)])
+            for orientation, shape in placed.items():
+                if shape.intersection(solid).area > 1e-9:
+                    raise DegenerateDesign(
+                        f"the part does not fit at the top of the input chute ({orientation})",
+                        ("a", "d", "theta"),
+                    )
 
     depth = 2.0 * part.length
     heavy_below = part.length / 2 - part.com_offset
