@@ -25,12 +25,14 @@ def _speedup_text(speedup: dict | None) -> str:
     ladder_cost = number(speedup.get("ladder_cost_s"))
     dynamic_cost = number(speedup.get("dynamic_cost_s"))
     factor = number(speedup.get("speedup"))
+    top = speedup.get("top_level") or "the top level"
+    basis = str(speedup.get("basis", "the holdout")).removeprefix("the ")
     return (
-        f"The ladder cost {cell(ladder_cost)} s of worker time; evaluating every design at "
-        f"{speedup.get('top_level') or 'the top level'} alone would cost about "
+        f"The ladder up to {top} cost {cell(ladder_cost)} s of worker time; evaluating every "
+        f"design at {top} alone would cost about "
         f"{cell(dynamic_cost)} s (95% CI {interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
         f"a speed-up of {cell(factor)}x (95% CI {interval(speedup.get('speedup_ci'), '.3g')}), "
-        f"estimated on {cell(speedup.get('holdout_n'))} holdout designs."
+        f"estimated on {cell(speedup.get('holdout_n'))} {basis} designs."
     )
 
 
