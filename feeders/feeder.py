@@ -232,21 +232,24 @@ def _segments(edges: list[Edge]) -> np.ndarray:
     return np.array([(e.start, e.end) for e in edges], dtype=np.float64)
 
 
-def _check_crossings(edges: list[Edge], segments: np.ndarray) -> None:
+def _check_crossings(edges: list[Edge], segments: np.ndarray) -> bool:
     """:class:`DegenerateDesign` for the first pair (in edge order) of edges that meet other
     than at a shared end, as shapely's intersection says. ``segments``: the edges ``(n, 2,
     2)``. Pairs whose bounding boxes are apart cannot meet (GEOS finds no intersection there
     either) and are not asked; pairs exact orientation tests decide are not asked either
-    (``feeders.wall_kernel.first_suspect_pair``), the others are asked of shapely."""
+    (``feeders.wall_kernel.first_suspect_pair``), the others are asked of shapely. Returns
+    whether every pair was decided without shapely (then the ring is a simple polygon)."""
     from feeders.wall_kernel import UNSURE, first_suspect_pair  # numba on first build
 
     after = -1
+    decided = len(edges) >= 3
     while True:
         k, i, j, status = first_suspect_pair(segments, after)
         if k < 0:
-            return
+            return decided
         after = k
         if status == UNSURE:
+            decided = False
             inter = shapely.intersection(
                 shapely.LineString(segments[i]), shapely.LineString(segments[j])
             )
@@ -258,6 +261,43 @@ def _check_crossings(edges: list[Edge], segments: np.ndarray) -> None:
         names = tuple(dict.fromkeys(edges[i].parameters + edges[j].parameters))
         raise DegenerateDesign(
             f"walls cross: the {edges[i].label} meets the {edges[j].label}", names
+        )
+
+
+LEFT_SIDE = ("left cavity wall", "cavity floor (left)", "left chamfer")  # the finger's root
+TIP_TOLERANCE = 1e-9  # length: tip distances this close to r are asked of shapely
+
+
+def _check_tip(p: DesignParameters, edges: list[Edge], segments: np.ndarray) -> None:
+    """:class:`DegenerateDesign` if the protuberance's tip centre is not inside the cavity
+    (shapely's ``contains``: not on its boundary) or its disc reaches an edge other than
+    the left side it grows from (shapely's distance at most r), first edge first. Decided by
+    the kernels where floating point is certain, by shapely where not."""
+    from feeders.wall_kernel import UNSURE, first_reached, point_inside  # numba on first build
+
+    inside = point_inside(segments, p.fx, p.fy)
+    if inside == UNSURE:
+        inside = Polygon(segments[:, 0]).contains(Point(p.fx, p.fy))
+    if not inside:
+        distances = shapely.distance(shapely.linestrings(segments), Point(p.fx, p.fy))
+        nearest = edges[int(np.argmin(distances))]
+        raise DegenerateDesign(
+            f"the protuberance tip f = ({p.fx:g}, {p.fy:g}) lies inside a wall ({nearest.label})",
+            tuple(dict.fromkeys(("fx", "fy", *nearest.parameters))),
+        )
+    skip = np.array([e.label in LEFT_SIDE for e in edges])
+    start = 0
+    while True:
+        i, status = first_reached(segments, p.fx, p.fy, p.r, skip, start, TIP_TOLERANCE)
+        if i < 0:
+            return
+        start = i + 1
+        line = shapely.LineString(segments[i])
+        if status == UNSURE and shapely.distance(line, Point(p.fx, p.fy)) > p.r:
+            continue
+        raise DegenerateDesign(
+            f"the protuberance (f, r = {p.r:g}) reaches the {edges[i].label}",
+            tuple(dict.fromkeys(("fx", "fy", "r", *edges[i].parameters))),
         )
 
 
@@ -278,12 +318,18 @@ def _clearly_apart(shapes: list[Polygon], pieces: list[np.ndarray], disc: np.nda
     return True
 
 
-def _with_finger(wall_verts: np.ndarray, finger: np.ndarray) -> np.ndarray:
-    """The walls' padded vertices ``(n, WALL_CAPACITY, 2)`` with the finger's after them."""
-    out = np.zeros((len(wall_verts) + 1, wall_verts.shape[1], 2))
-    out[:-1] = wall_verts
-    out[-1, : len(finger)] = finger
-    return out
+def _with_finger(
+    wall_verts: np.ndarray, wall_counts: np.ndarray, finger: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The walls' padded vertices ``(n, WALL_CAPACITY, 2)`` and counts with the finger's
+    after them."""
+    verts = np.zeros((len(wall_verts) + 1, wall_verts.shape[1], 2))
+    verts[:-1] = wall_verts
+    verts[-1, : len(finger)] = finger
+    counts = np.empty(len(wall_counts) + 1, dtype=np.int64)
+    counts[:-1] = wall_counts
+    counts[-1] = len(finger)
+    return verts, counts
 
 
 def _pose_vertices(part: Peg, pose: Pose) -> np.ndarray:
@@ -341,30 +387,14 @@ def build_feeder(
         raise ValueError(f"roof_rise = {roof_rise!r} is outside the allowed range [0, 10]")
     edges = interior_edges(p, part, roof_rise)
     segments = _segments(edges)
-    _check_crossings(edges, segments)
-    lines = shapely.linestrings(segments)
-    outline = np.array([e.start for e in edges])
-    interior = Polygon(outline)
-    if not interior.is_valid or interior.area <= 0:
-        raise DegenerateDesign("the walls do not enclose a cavity", ("e", "gx", "gy", "theta"))
-
+    decided = _check_crossings(edges, segments)
+    outline = np.ascontiguousarray(segments[:, 0])
+    if not decided:  # a ring without crossings (all pairs certain) is a valid polygon
+        interior = Polygon(outline)
+        if not interior.is_valid or interior.area <= 0:
+            raise DegenerateDesign("the walls do not enclose a cavity", ("e", "gx", "gy", "theta"))
+    _check_tip(p, edges, segments)
     finger, tip = protuberance(p)
-    tip_point = Point(p.fx, p.fy)
-    if not interior.contains(tip_point):
-        nearest = edges[int(np.argmin(shapely.distance(lines, tip_point)))]
-        raise DegenerateDesign(
-            f"the protuberance tip f = ({p.fx:g}, {p.fy:g}) lies inside a wall ({nearest.label})",
-            tuple(dict.fromkeys(("fx", "fy", *nearest.parameters))),
-        )
-    tip_distances = shapely.distance(lines, tip_point)
-    for edge, distance in zip(edges, tip_distances.tolist(), strict=True):
-        if edge.label in ("left cavity wall", "cavity floor (left)", "left chamfer"):
-            continue  # the finger grows out of the left side: touching it there is by design
-        if distance <= p.r:
-            raise DegenerateDesign(
-                f"the protuberance (f, r = {p.r:g}) reaches the {edge.label}",
-                tuple(dict.fromkeys(("fx", "fy", "r", *edge.parameters))),
-            )
 
     mitred = _mitred(segments, WALL_THICKNESS)
     if mitred is None:
@@ -390,15 +420,15 @@ def build_feeder(
     corners = np.array([_pose_vertices(part, pose) for pose in starts.values()])
     if mitred is None or not surely_apart(
         corners,
-        _with_finger(wall_verts, finger),
-        np.append(wall_counts, len(finger)),
+        *_with_finger(wall_verts, wall_counts, finger),
         tip,
         CLEARANCE,
         CLEARANCE_SLACK,
     ):
         placed = {o: Polygon(c) for o, c in zip(starts, corners, strict=True)}
         if not _clearly_apart(list(placed.values()), pieces, tip):
-            solid = shapely.unary_union([Polygon(w) for w in pieces] + [tip_point.buffer(p.r)])
+            disc = Point(p.fx, p.fy).buffer(p.r)
+            solid = shapely.unary_union([Polygon(w) for w in pieces] + [disc])
             for orientation, shape in placed.items():
                 if shape.intersection(solid).area > 1e-9:
                     raise DegenerateDesign(

@@ -322,3 +322,47 @@ def surely_apart(
         if best - r <= need:
             return False
     return True
+
+
+@numba.njit(cache=True)
+def point_inside(segments: np.ndarray, px: float, py: float) -> int:
+    """Whether the point is strictly inside the ring of edges ``(n, 2, 2)`` (1) or not (0),
+    decided by crossings with certain orientations; :data:`UNSURE` where the point is on or
+    near an edge (shapely decides: on the boundary is not inside)."""
+    inside = False
+    for i in range(segments.shape[0]):
+        ax, ay = segments[i, 0, 0], segments[i, 0, 1]
+        bx, by = segments[i, 1, 0], segments[i, 1, 1]
+        near = min(ax, bx) <= px <= max(ax, bx) and min(ay, by) <= py <= max(ay, by)
+        straddles = (ay > py) != (by > py)
+        if not (near or straddles):
+            continue
+        turn, sure = _orientation(ax, ay, bx, by, px, py)
+        if not sure or turn == 0:
+            return UNSURE
+        if straddles and (turn > 0) == (by > ay):
+            inside = not inside
+    return 1 if inside else 0
+
+
+@numba.njit(cache=True)
+def first_reached(
+    segments: np.ndarray, px: float, py: float, r: float, skip: np.ndarray, start: int, tol: float
+) -> tuple[int, int]:
+    """The first edge ``i >= start`` not in ``skip`` within ``r`` of the point: ``(i,
+    CROSSING)`` where its distance is certainly at most r (more than ``tol`` below),
+    ``(i, UNSURE)`` where it is within ``tol`` of r (shapely decides), ``(-1, 0)`` if none."""
+    for i in range(start, segments.shape[0]):
+        if skip[i]:
+            continue
+        ax, ay = segments[i, 0, 0], segments[i, 0, 1]
+        ex, ey = segments[i, 1, 0] - ax, segments[i, 1, 1] - ay
+        wx, wy = px - ax, py - ay
+        length2 = ex * ex + ey * ey
+        t = 0.0 if length2 == 0.0 else min(1.0, max(0.0, (wx * ex + wy * ey) / length2))
+        distance = np.hypot(wx - t * ex, wy - t * ey)
+        if distance < r - tol:
+            return i, CROSSING
+        if distance <= r + tol:
+            return i, UNSURE
+    return -1, 0

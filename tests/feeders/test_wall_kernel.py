@@ -30,7 +30,14 @@ from feeders.feeder import (
     walls_reference,
 )
 from feeders.halton import halton_designs
-from feeders.wall_kernel import _fma, _orientation, surely_apart
+from feeders.wall_kernel import (
+    UNSURE,
+    _fma,
+    _orientation,
+    first_reached,
+    point_inside,
+    surely_apart,
+)
 
 
 def _box_designs(count: int, seed: int) -> list[DesignParameters]:
@@ -138,6 +145,68 @@ def test_the_first_crossing_pair_is_shapelys(grid: float | None) -> None:
         found += expected is not None
         clear += expected is None
     assert found > 50 and clear > 50
+
+
+def test_a_ring_whose_pairs_were_all_certain_is_a_valid_polygon() -> None:
+    """What lets the build skip shapely's validity test: no crossing among pairs the
+    kernel decided alone makes the ring a valid polygon of positive area."""
+    rng = np.random.default_rng(13)
+    skipped = 0
+    for k in range(600):
+        n = int(rng.integers(3, 10))
+        points = _star(rng, n) if k % 2 == 0 else rng.uniform(-3.0, 3.0, (n, 2))
+        edges = _ring(points)
+        try:
+            decided = _check_crossings(edges, _segments(edges))
+        except DegenerateDesign:
+            continue
+        if decided:
+            skipped += 1
+            polygon = shapely.Polygon(points)
+            assert polygon.is_valid and polygon.area > 0
+    assert skipped > 100
+
+
+def test_the_tip_is_inside_where_shapely_says_so() -> None:
+    """Points inside, outside, on edges and at vertices of random rings (on a grid: exact
+    boundary cases): wherever the kernel decides, it decides as shapely's ``contains``."""
+    rng = np.random.default_rng(14)
+    decided = 0
+    for _ in range(300):
+        points = np.round(_star(rng, int(rng.integers(3, 12))) * 4) / 4
+        keep = np.any(points != np.roll(points, 1, axis=0), axis=1)
+        points = points[keep]
+        if len(points) < 3 or not shapely.Polygon(points).is_valid:
+            continue
+        segments = _segments(_ring(points))
+        polygon = shapely.Polygon(points)
+        for x, y in np.round(rng.uniform(-5.0, 5.0, (20, 2)) * 4) / 4:
+            inside = point_inside(segments, x, y)
+            if inside != UNSURE:
+                decided += 1
+                assert bool(inside) == polygon.contains(shapely.Point(x, y))
+    assert decided > 2000
+
+
+def test_the_first_edge_the_tip_reaches_is_shapelys() -> None:
+    """For discs about random rings, every edge the kernel names as reached is within r by
+    shapely's distance, and the first one shapely finds within r beyond ``tol`` is named."""
+    rng = np.random.default_rng(15)
+    tol = 1e-9
+    for _ in range(300):
+        points = _star(rng, int(rng.integers(3, 12)))
+        segments = _segments(_ring(points))
+        lines = shapely.linestrings(segments)
+        skip = rng.uniform(size=len(points)) < 0.3
+        x, y = rng.uniform(-3.0, 3.0, 2)
+        r = rng.uniform(0.05, 2.0)
+        distances = shapely.distance(lines, shapely.Point(x, y))
+        i, status = first_reached(segments, x, y, r, skip, 0, tol)
+        reached = [k for k in range(len(points)) if not skip[k] and distances[k] <= r]
+        if status == UNSURE:
+            assert abs(distances[i] - r) <= 2 * tol
+            continue
+        assert i == (reached[0] if reached else -1)
 
 
 def test_crossing_walls_of_designs_are_named_as_shapely_names_them() -> None:
