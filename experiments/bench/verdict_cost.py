@@ -25,11 +25,12 @@ Measure, never assert: these return numbers for reports, they judge nothing.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 import numpy as np
 
-from experiments.drop.screen import design_screen
-from experiments.drop.verdict import design_verdict
+from experiments.drop.screen import Screen, design_screen
+from experiments.drop.verdict import Verdict, design_verdict
 from experiments.drop.verdict_settings import VerdictSettings
 from feeders.design import DesignParameters, preset
 from feeders.feeder import DegenerateDesign
@@ -58,7 +59,7 @@ def verdict_cost(designs: int = 200, seed: int = 0) -> dict:
     for i, values in enumerate(halton_points(designs, seed)):
         design = DesignParameters.from_vector([float(v) for v in values])
         verdict_seed, screen_seed = _seed(seed, i, 1), _seed(seed, i, 2)
-        runs = {
+        runs: dict[str, Callable[[], Verdict | Screen]] = {
             "wilson": lambda d=design, s=verdict_seed: design_verdict(d, settings=WILSON, seed=s),
             "sprt": lambda d=design, s=verdict_seed: design_verdict(d, settings=SPRT, seed=s),
             "screen": lambda d=design, s=screen_seed: design_screen(d, seed=s),
