@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from functools import partial
 
 import numpy as np
 
@@ -60,9 +61,9 @@ def verdict_cost(designs: int = 200, seed: int = 0) -> dict:
         design = DesignParameters.from_vector([float(v) for v in values])
         verdict_seed, screen_seed = _seed(seed, i, 1), _seed(seed, i, 2)
         runs: dict[str, Callable[[], Verdict | Screen]] = {
-            "wilson": lambda d=design, s=verdict_seed: design_verdict(d, settings=WILSON, seed=s),
-            "sprt": lambda d=design, s=verdict_seed: design_verdict(d, settings=SPRT, seed=s),
-            "screen": lambda d=design, s=screen_seed: design_screen(d, seed=s),
+            "wilson": partial(design_verdict, design, settings=WILSON, seed=verdict_seed),
+            "sprt": partial(design_verdict, design, settings=SPRT, seed=verdict_seed),
+            "screen": partial(design_screen, design, seed=screen_seed),
         }
         order = list(runs)[i % 3 :] + list(runs)[: i % 3]
         seconds: dict[str, float] = {}
