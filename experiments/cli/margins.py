@@ -55,8 +55,8 @@ def run(args: argparse.Namespace) -> int:
     check_count(args.seed, "--seed", 2**32 - 1, low=0)
     workers = (os.cpu_count() or 1) if args.workers is None else args.workers
     check_count(workers, "--workers", MAX_WORKERS)
-    scene = load_scene(args.design, None)
     out = out_dir(args.out)
+    scene = load_scene(args.design, None)
     compile_once(["dynamic"])
     from experiments.margins.measure import MarginSettings, Subject
     from experiments.margins.run import margins_of

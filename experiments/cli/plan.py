@@ -12,7 +12,13 @@ import json
 from pathlib import Path
 
 from experiments.cli.kernels import compile_once
-from experiments.cli.scenes import add_scene_arguments, load_scene, orientations
+from experiments.cli.scenes import (
+    add_scene_arguments,
+    design_starts,
+    load_scene,
+    orientations,
+    orientations_of,
+)
 from experiments.cli.usage import check_count, check_seed, check_time, out_dir
 from experiments.names import LEVEL_NAMES, PLANNER_NAMES
 
@@ -62,9 +68,12 @@ def run(args: argparse.Namespace) -> int:
         time_limit = float(args.time)
     else:
         time_limit = DEFAULT_TIME_S if args.propagations is None else CAP_TIME_S
+    out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
+    starts = design_starts(args.scene)
+    if starts is not None:  # checked before the feeder is built (its kernels load numba)
+        orientations_of(starts, args.orientation)
     scene = load_scene(args.design, args.scene)
     chosen = orientations(scene, args.orientation)
-    out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
     compile_once([args.level])
     from planners.plan import plan
 

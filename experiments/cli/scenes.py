@@ -91,13 +91,26 @@ def load_scene(design: str | None, scene_file: Path | None) -> Scene:
 
 def orientations(scene: Scene, choice: str) -> list[str]:
     """``both`` (the feeder's two entries, or every start of a free-form scene) or one start."""
+    return orientations_of(list(scene.starts), choice)
+
+
+def orientations_of(starts: list[str], choice: str) -> list[str]:
+    """:func:`orientations` from the names of the scene's starts."""
     from feeders.feeder import ORIENTATIONS
 
     if choice == "both":
-        return [o for o in ORIENTATIONS if o in scene.starts] or list(scene.starts)
-    if choice in scene.starts:
+        return [o for o in ORIENTATIONS if o in starts] or list(starts)
+    if choice in starts:
         return [choice]
     raise UsageError(
         f"--orientation '{choice}' is not a start of this scene; "
-        f"choose both or one of: {', '.join(scene.starts)}"
+        f"choose both or one of: {', '.join(starts)}"
     )
+
+
+def design_starts(scene_file: Path | None) -> list[str] | None:
+    """The starts of a ``--design``'s feeder (its two entries: known before it is built, which
+    loads the compiled wall kernels), None for a ``--scene`` file (read it to know)."""
+    from feeders.feeder import ORIENTATIONS
+
+    return None if scene_file is not None else list(ORIENTATIONS)
