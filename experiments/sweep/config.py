@@ -167,21 +167,9 @@ class SweepConfig:
 
 def _passive_rung(spec: Any, field_name: str) -> Rung:
     """The passive rung: its settings checked by the classes that use them."""
-    from experiments.drop.perturbations import Perturbations
     from experiments.drop.verdict_settings import VerdictSettings
 
-    spec = mapping_field(spec, field_name, {"level", "verdict", "perturbations"})
-    verdict = mapping_field(spec.get("verdict", {}) or {}, f"{field_name}.verdict", VERDICT_KEYS)
-    noise = mapping_field(
-        spec.get("perturbations", {}) or {},
-        f"{field_name}.perturbations",
-        set(Perturbations.__dataclass_fields__),
-    )
-    try:
-        perturbations = Perturbations(**noise)
-        settings = VerdictSettings(**verdict, perturbations=perturbations)
-    except ValueError as exc:
-        raise ConfigError(f"{field_name}.{exc}") from None
+    settings = _drop_settings(spec, field_name, "verdict", VERDICT_KEYS, VerdictSettings)
     return Rung(
         PASSIVE,
         (),
@@ -189,8 +177,27 @@ def _passive_rung(spec: Any, field_name: str) -> Rung:
             **{k: getattr(settings, k) for k in sorted(WILSON_KEYS)},
             **settings.rule_fields(),
         },
-        perturbations=perturbations.to_dict(),
+        perturbations=settings.perturbations.to_dict(),
     )
+
+
+def _drop_settings(spec: Any, field_name: str, key: str, keys: set[str], kind: Any) -> Any:
+    """A drop rung's settings (``kind``: the verdict's or the screen's, read from the rung's
+    ``key`` with the fields ``keys``) with the rung's ``perturbations``, checked by the
+    classes that use them; :class:`ConfigError` naming the field."""
+    from experiments.drop.perturbations import Perturbations
+
+    spec = mapping_field(spec, field_name, {"level", key, "perturbations"})
+    given = mapping_field(spec.get(key, {}) or {}, f"{field_name}.{key}", keys)
+    noise = mapping_field(
+        spec.get("perturbations", {}) or {},
+        f"{field_name}.perturbations",
+        set(Perturbations.__dataclass_fields__),
+    )
+    try:
+        return kind(**given, perturbations=Perturbations(**noise))
+    except ValueError as exc:
+        raise ConfigError(f"{field_name}.{exc}") from None
 
 
 WILSON_KEYS = {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
@@ -224,23 +231,13 @@ def _screen_rung(spec: Any, field_name: str) -> Rung:
     the verdict's), checked by the classes that use them. A design the screen fails stops
     (a statistical prune, with the stated error); one it leaves undecided climbs on
     (an undecided screen proves nothing)."""
-    from experiments.drop.perturbations import Perturbations
     from experiments.drop.screen_settings import ScreenSettings
 
-    spec = mapping_field(spec, field_name, {"level", "screen", "perturbations"})
     keys = set(ScreenSettings.__dataclass_fields__) - {"perturbations"}
-    given = mapping_field(spec.get("screen", {}) or {}, f"{field_name}.screen", keys)
-    noise = mapping_field(
-        spec.get("perturbations", {}) or {},
-        f"{field_name}.perturbations",
-        set(Perturbations.__dataclass_fields__),
+    settings = _drop_settings(spec, field_name, "screen", keys, ScreenSettings)
+    return Rung(
+        SCREEN, (), verdict=settings.fields(), perturbations=settings.perturbations.to_dict()
     )
-    try:
-        perturbations = Perturbations(**noise)
-        settings = ScreenSettings(**given, perturbations=perturbations)
-    except ValueError as exc:
-        raise ConfigError(f"{field_name}.{exc}") from None
-    return Rung(SCREEN, (), verdict=settings.fields(), perturbations=perturbations.to_dict())
 
 
 def _rung(spec: Any, field_name: str) -> Rung:
