@@ -172,13 +172,15 @@ def benchmark_problem(
     parameters: Mapping[str, float | int | str] | None = None,
     settings: PlannerSettings | None = None,
     level_options: Mapping[str, Any] | None = None,
+    start_region: tuple[float, float] | None = None,
 ) -> BenchmarkResult:
     """Benchmark ``planners`` on the problem of reaching the scene's goal from entry
     ``orientation`` at level ``level_name``, ``runs`` runs each: the problem of
     :func:`planners.plan.control_problem` (seeded by ``seed``, with ``settings``) through
     :func:`benchmark_control_problem`, which says what the arguments mean.
     ``level_options`` go to the level (e.g. ``{"slack": ...}``: the geometric level as a
-    relaxation, :func:`validity.geometric_slack.relaxation_slack`).
+    relaxation, :func:`validity.geometric_slack.relaxation_slack`); ``start_region`` adds
+    the entry region's corners as start states (:func:`planners.plan.control_problem`).
 
     >>> from feeders.design import PRESETS
     >>> from feeders.feeder import build_feeder
@@ -201,6 +203,7 @@ def benchmark_problem(
         settings or PlannerSettings(),
         dict(level_options or {}),
         count=True,
+        start_region=start_region,
     )
     return benchmark_control_problem(problem, planners, runs, budget, seed, experiment, parameters)
 

@@ -206,6 +206,22 @@ def seed_ompl(seed: int) -> None:
     ou.setLogLevel(previous)
 
 
+def region_corners(
+    pose: tuple[float, float, float], region: tuple[float, float] | None
+) -> list[tuple[float, float, float]]:
+    """The 8 corners of the entry region round ``pose``: x and y each moved by +-position,
+    yaw by +-yaw (``region``: (position, yaw)); none without a region or with a zero one."""
+    if region is None or (region[0] == 0.0 and region[1] == 0.0):
+        return []
+    p, w = region
+    return [
+        (pose[0] + sx * p, pose[1] + sy * p, pose[2] + sw * w)
+        for sx in (-1.0, 1.0)
+        for sy in (-1.0, 1.0)
+        for sw in (-1.0, 1.0)
+    ]
+
+
 def control_problem(
     scene: Scene,
     level_name: str,
@@ -214,6 +230,7 @@ def control_problem(
     settings: PlannerSettings | None = None,
     level_options: dict | None = None,
     count: bool = False,
+    start_region: tuple[float, float] | None = None,
 ) -> ControlProblem:
     """From the scene's start ``orientation`` into its goal region at level ``level_name``:
     state and control spaces, the level as validity checker and propagator, the propagation
@@ -222,7 +239,11 @@ def control_problem(
     problem's ``counts`` holds [validity checks, propagations] made so far. The level's
     kernels are compiled (or loaded from numba's cache) before it returns, so a planner's
     clock measures planning: on a cold cache the first propagation took the seconds of a
-    compile, and a time budget ran out in it (issue 22)."""
+    compile, and a time budget ran out in it (issue 22). ``start_region`` (position, yaw
+    half-ranges: the verdict's entry perturbations) adds the region's 8 corner poses that
+    are valid as further start states after the nominal one, so that the problem asks
+    whether the part can reach the goal from anywhere it may enter (issue 21: the geometric
+    level as a relaxation of the perturbed drops)."""
     settings = settings or PlannerSettings()
     start_pose = scene.start(orientation)
     level = make_level(level_name, scene, **(level_options or {}))
@@ -240,6 +261,12 @@ def control_problem(
     start = space.allocState()
     write(start, level.state_of_pose(start_pose))
     ss.setStartState(start)
+    for pose in region_corners(start_pose, start_region):
+        state = level.state_of_pose(pose)
+        if level.is_valid(state):
+            corner = space.allocState()
+            write(corner, state)
+            ss.addStartState(corner)
     goal = GoalBox(si, scene.goal, level.state_dim, np.random.default_rng(seed))
     ss.setGoal(goal)
     problem = ControlProblem(

@@ -307,12 +307,15 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
     parameters: dict[str, float | int | str] = dict(zip(PARAMETER_NAMES, values, strict=True))
     parameters.update(design_id=design_id, level=level, seed=seed)
     level_options: dict[str, Any] = {}
-    if level == "geometric":  # a relaxation: contact and the made walls' tolerance granted
+    region = None
+    if level == "geometric":  # a relaxation: contact, the made walls' tolerance and the
+        # entry region granted (the verdict's perturbations)
         from experiments.drop.perturbations import Perturbations
         from validity.geometric_slack import relaxation_slack
 
-        tolerance = Perturbations(**job["perturbations"]).tolerance
-        level_options["slack"] = relaxation_slack(scene, tolerance).total
+        noise = Perturbations(**job["perturbations"])
+        level_options["slack"] = relaxation_slack(scene, noise.tolerance).total
+        region = (noise.position, noise.yaw)
     feasible = True
     for orientation in ORIENTATIONS:
         bench = benchmark_problem(
@@ -327,6 +330,7 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
             parameters={**parameters, "orientation": orientation},
             settings=PlannerSettings(**job["planner"]),
             level_options=level_options,
+            start_region=region,
         )
         result["logs"][orientation] = bench.log
         result["runs"].extend({"orientation": orientation, **run} for run in bench.runs)
