@@ -11,6 +11,7 @@ any batching.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -76,8 +77,9 @@ class Perturbations:
 
 @dataclass(frozen=True)
 class DropDraw:
-    """One drop's perturbation: design factors (12), friction factor, and per entry
-    orientation the offset (dx, dy, dyaw) and entry velocity (vx, vy)."""
+    """One drop's perturbation: design factors (one per design parameter: 12 for the
+    feeder), friction factor, and per entry orientation the offset (dx, dy, dyaw) and entry
+    velocity (vx, vy)."""
 
     design_factors: tuple[float, ...]
     friction_factor: float
@@ -85,13 +87,25 @@ class DropDraw:
     entry_velocities: tuple[tuple[float, float], ...]
 
 
-def draw(perturbations: Perturbations, seed: int, index: int, entries: int = 2) -> DropDraw:
+def draw(
+    perturbations: Perturbations,
+    seed: int,
+    index: int,
+    entries: int = 2,
+    parameters: int = len(PARAMETER_NAMES),
+) -> DropDraw:
     """The perturbation of drop ``index`` of a verdict with ``seed`` (``entries`` entry
     orientations share the toleranced feeder and the friction: one made feeder, one part
-    batch, both entries)."""
+    batch, both entries), with a design factor for each of ``parameters`` design parameters
+    (the 12-parameter feeder's by default; a device family's n,
+    :mod:`experiments.drop.family_verdict`). The generator draws the factors first, one after
+    another, so the first k factors of a draw are the same numbers for any ``parameters`` >= k;
+    the friction and entry draws that follow them shift with ``parameters``."""
+    if isinstance(parameters, bool) or not isinstance(parameters, int) or parameters < 0:
+        raise ValueError(f"parameters = {parameters!r} must be a whole number >= 0")
     rng = np.random.default_rng([seed, index])
     p = perturbations
-    factors = 1.0 + p.tolerance * rng.uniform(-1.0, 1.0, len(PARAMETER_NAMES))
+    factors = 1.0 + p.tolerance * rng.uniform(-1.0, 1.0, parameters)
     friction = 1.0 + p.friction * rng.uniform(-1.0, 1.0)
     offsets, velocities = [], []
     for _ in range(entries):
@@ -113,3 +127,24 @@ def toleranced(design: DesignParameters, factors: tuple[float, ...]) -> DesignPa
         low, high = PHYSICAL_BOUNDS[name]
         values.append(min(high, max(low, getattr(design, name) * factor)))
     return DesignParameters.from_vector(values)
+
+
+def toleranced_values(
+    values: Sequence[float],
+    factors: Sequence[float],
+    low: Sequence[float] | None = None,
+    high: Sequence[float] | None = None,
+) -> tuple[float, ...]:
+    """Parameter values as made: each value times its factor (a relative error, so a value of
+    0 is made exactly), kept within ``[low, high]`` per value when they are given. A device
+    family passes no bounds: its box is what a sweep samples, not what can be built, and its
+    rules decide whether the made values build (a made device they refuse is a failed trial,
+    :data:`experiments.drop.verdict.UNBUILDABLE`)."""
+    if len(factors) != len(values):
+        raise ValueError(f"{len(factors)} factors for {len(values)} values")
+    made = [float(v) * float(f) for v, f in zip(values, factors, strict=True)]
+    if low is not None:
+        made = [max(lo, m) for lo, m in zip(low, made, strict=True)]
+    if high is not None:
+        made = [min(hi, m) for hi, m in zip(high, made, strict=True)]
+    return tuple(made)
