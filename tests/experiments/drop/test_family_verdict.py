@@ -5,6 +5,7 @@ device its rules refuse is a failed trial; the 12-parameter feeder's draws are w
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -214,3 +215,19 @@ def test_a_family_of_more_parameters_than_the_verdict_draws_is_refused() -> None
     family = family_from_dict(data, name="thirteen")
     with pytest.raises(ValueError, match="13 parameters; the verdict draws 12"):
         made_devices(family, np.asarray(family.default()))
+
+
+def test_the_pages_verdict_example_runs_as_written(capsys: pytest.CaptureFixture[str]) -> None:
+    """docs/families.md, "The verdict of a family": its python block runs from the repository
+    root and prints what the page says it prints."""
+    page = FIG1.parents[2] / "docs" / "families.md"
+    section = page.read_text().split("## The verdict of a family", 1)[1]
+    block = re.search(r"^```python\n(.*?)^```", section, re.MULTILINE | re.DOTALL)
+    assert block is not None
+    code = block.group(1).replace('"feeders/families/fig1.yaml"', repr(str(FIG1)))
+    exec(compile(code, str(page), "exec"), {"__name__": "families_page"})
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "fails ('open_leading', 'open_trailing')"
+    assert lines[1].startswith("open_leading 0 of 10")
+    assert lines[2].startswith("open_trailing 9 of 10")
+    assert lines[3] == "fails"
