@@ -31,18 +31,11 @@ from experiments.drop.screen import Screen, screen_of
 from experiments.drop.screen_settings import ScreenSettings
 from experiments.drop.verdict import Verdict, verdict_of
 from experiments.drop.verdict_settings import VerdictSettings
-from feeders.design import PARAMETER_NAMES
 from feeders.device_family import DeviceFamily
 from feeders.part import Peg
 from feeders.scene import Scene
 
 Vector = Mapping[str, float] | Sequence[float] | np.ndarray
-
-VERDICT_FACTORS = len(PARAMETER_NAMES)
-"""Design factors the verdict's trials draw (:func:`experiments.drop.verdict.run_trial` draws
-the 12-parameter feeder's); a family of n <= 12 parameters takes the first n. They are the
-numbers ``draw(..., parameters=n)`` would give, since the generator draws the factors first,
-in order."""
 
 
 def entry_names(family: DeviceFamily) -> tuple[str, ...]:
@@ -61,17 +54,11 @@ def made_devices(
     times its design factor, unclamped (the rules decide), the walls' friction (None: the
     family's) times the draw's friction factor; ``part`` (None: the family's) replaces the
     family's part. Raises :class:`feeders.feeder.DegenerateDesign` at once if the nominal
-    vector cannot be built, ``ValueError`` if the vector is not the family's or the family has
-    more parameters than the verdict draws factors (:data:`VERDICT_FACTORS`)."""
+    vector cannot be built, ``ValueError`` if the vector is not the family's."""
     if part is not None:
         family = dataclasses.replace(family, part=part)
     nominal = tuple(family.values(values).values())
     n = len(nominal)
-    if n > VERDICT_FACTORS:
-        raise ValueError(
-            f"{family.name}: {n} parameters; the verdict draws {VERDICT_FACTORS} design "
-            "factors per trial"
-        )
     family.build(nominal)
     mu = family.friction if friction is None else float(friction)
 
@@ -97,7 +84,8 @@ def family_verdict(
     :func:`experiments.drop.verdict.verdict_of` decides. Raises
     :class:`feeders.feeder.DegenerateDesign` if the nominal vector cannot be built."""
     make_scene = made_devices(family, values, part, friction)
-    return verdict_of(make_scene, entry_names(family), settings or VerdictSettings(), seed)
+    n = len(family.vector_names)
+    return verdict_of(make_scene, entry_names(family), settings or VerdictSettings(), seed, n)
 
 
 def family_screen(
@@ -113,4 +101,5 @@ def family_screen(
     over the family's entries, devices made as the verdict makes them. Raises
     :class:`feeders.feeder.DegenerateDesign` if the nominal vector cannot be built."""
     make_scene = made_devices(family, values, part, friction)
-    return screen_of(make_scene, entry_names(family), settings or ScreenSettings(), seed)
+    n = len(family.vector_names)
+    return screen_of(make_scene, entry_names(family), settings or ScreenSettings(), seed, n)

@@ -32,7 +32,7 @@ from experiments.drop.perturbations import DropDraw, draw
 from experiments.drop.screen_settings import ScreenSettings
 from experiments.drop.sequential import FAILS, UNDECIDED, WORKS, Wald
 from experiments.drop.verdict import entry_drop, made_feeders
-from feeders.design import DesignParameters
+from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign
 from feeders.part import DEFAULT_PEG, Peg
 from feeders.scene import Scene
@@ -107,16 +107,18 @@ def screen_of(
     orientations: Sequence[str],
     settings: ScreenSettings,
     seed: int,
+    parameters: int = len(PARAMETER_NAMES),
 ) -> Screen:
     """Drops of ``make_scene`` (a feeder made from a draw), one entry at a time, until the
     screen decides (:func:`sequence`). A made feeder that cannot be built counts as a failed
     drop (as in the verdict); a drop that ends inside a wall is a fault of the simulation
-    and is drawn again."""
+    and is drawn again. ``parameters``: how many design factors a draw makes (a device
+    family's count)."""
     t0 = time.perf_counter()
     n = len(orientations)
 
     def drop(k: int, index: int) -> bool | None:
-        perturbation = draw(settings.perturbations, seed, index, n)
+        perturbation = draw(settings.perturbations, seed, index, n, parameters)
         try:
             scene = make_scene(perturbation)
         except DegenerateDesign:

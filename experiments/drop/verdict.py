@@ -33,7 +33,7 @@ from experiments.drop.perturbations import DropDraw, draw, toleranced
 from experiments.drop.sequential import UNDECIDED, Wald, advance, design_decision
 from experiments.drop.verdict_settings import SPRT, VerdictSettings
 from experiments.proportions import wilson_interval
-from feeders.design import DesignParameters
+from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import DEFAULT_FRICTION, ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.part import DEFAULT_PEG, Peg
 from feeders.scene import Scene
@@ -205,9 +205,11 @@ def run_trial(
     settings: VerdictSettings,
     seed: int,
     index: int,
+    parameters: int = len(PARAMETER_NAMES),
 ) -> Trial:
-    """Trial ``index`` of a verdict with ``seed``: one made feeder, a drop per orientation."""
-    perturbation = draw(settings.perturbations, seed, index, len(orientations))
+    """Trial ``index`` of a verdict with ``seed``: one made feeder, a drop per orientation
+    (``parameters``: how many design factors the draw makes; a device family's count)."""
+    perturbation = draw(settings.perturbations, seed, index, len(orientations), parameters)
     try:
         scene = make_scene(perturbation)
     except DegenerateDesign:
@@ -249,8 +251,10 @@ def verdict_of(
     orientations: Sequence[str],
     settings: VerdictSettings,
     seed: int,
+    parameters: int = len(PARAMETER_NAMES),
 ) -> Verdict:
-    """Trials of ``make_scene`` (a feeder made from a draw) until the verdict is decided."""
+    """Trials of ``make_scene`` (a feeder made from a draw of ``parameters`` design factors)
+    until the verdict is decided."""
     t0 = time.perf_counter()
     trials: list[Trial] = []
     counted: list[Trial] = []  # the trials without a simulation fault
@@ -259,7 +263,7 @@ def verdict_of(
     statuses = (UNDECIDED,) * len(orientations)  # the SPRT's per entry, final once decided
     for look in looks(settings):
         while len(counted) < look and len(trials) < look + settings.max_drops:
-            trial = run_trial(make_scene, orientations, settings, seed, len(trials))
+            trial = run_trial(make_scene, orientations, settings, seed, len(trials), parameters)
             trials.append(trial)
             if not trial.fault:
                 counted.append(trial)

@@ -98,7 +98,7 @@ def test_the_design_characteristic_matches_the_verdicts_own_loop_on_coin_flips(
     agree with the exact two-entry values within 4 standard errors."""
     from experiments.drop import verdict as verdict_module
 
-    def coin_trial(_make, orientations, _settings, seed, index):
+    def coin_trial(_make, orientations, _settings, seed, index, _parameters=12):
         rng = np.random.default_rng([seed, index])
         success = tuple(bool(rng.random() < P) for _ in orientations)
         return verdict_module.Trial(index, success, ("x",) * 2, (1.0,) * 2)
