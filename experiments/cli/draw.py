@@ -19,7 +19,7 @@ def add_arguments(draw: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """The design and ``--out`` are checked before matplotlib is imported."""
     out = out_file(args.out, inputs=[args.scene] if args.scene else [])
-    scene = load_scene(args.design, args.scene)
+    scene = load_scene(args.design, args.scene, args.family, args.values)
     from experiments.pictures.scenes import scene_figure
 
     print(scene_figure([scene], [scene.name], out))

@@ -69,10 +69,10 @@ def run(args: argparse.Namespace) -> int:
     else:
         time_limit = DEFAULT_TIME_S if args.propagations is None else CAP_TIME_S
     out = out_dir(args.out, inputs=[args.scene] if args.scene else [])
-    starts = design_starts(args.scene)
+    starts = design_starts(args.scene) if args.family is None else None
     if starts is not None:  # checked before the feeder is built (its kernels load numba)
         orientations_of(starts, args.orientation)
-    scene = load_scene(args.design, args.scene)
+    scene = load_scene(args.design, args.scene, args.family, args.values)
     chosen = orientations(scene, args.orientation)
     compile_once([args.level])
     from planners.plan import plan

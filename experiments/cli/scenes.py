@@ -13,11 +13,14 @@ from experiments.cli.usage import UsageError
 from experiments.names import PRESET_NAMES
 
 if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
     from feeders.scene import Scene
 
 PACKAGED_SCENES = "scenes"  # experiments/scenes/<name>.yaml, package data of the wheel
 # Named in --scene's help; tests/experiments/cli/test_scene_arguments.py checks they exist.
 SCENE_EXAMPLES = ("table3", "incline", "drop")
+PACKAGED_FAMILIES = "families"  # feeders/families/<name>.yaml, package data of the wheel
+FAMILY_EXAMPLES = ("fig1",)
 
 
 def add_scene_arguments(p: argparse.ArgumentParser) -> None:
@@ -35,6 +38,18 @@ def add_scene_arguments(p: argparse.ArgumentParser) -> None:
         help="a scene YAML file, or the name of a scene packaged with partfeeder "
         f"({', '.join(SCENE_EXAMPLES)}, ...; a file of that name comes first)",
     )
+    group.add_argument(
+        "--family",
+        type=Path,
+        help="a device family YAML file (docs/families.md), or the name of one packaged "
+        f"with partfeeder ({', '.join(FAMILY_EXAMPLES)}): its default design, or --values",
+    )
+    p.add_argument(
+        "--values",
+        default=None,
+        help="with --family: the design's values, comma-separated in the order of the "
+        "family's parameters (default: the family's defaults)",
+    )
 
 
 def packaged_scene_names() -> list[str]:
@@ -43,6 +58,56 @@ def packaged_scene_names() -> list[str]:
 
     folder = files("experiments").joinpath(PACKAGED_SCENES)
     return sorted(e.name[: -len(".yaml")] for e in folder.iterdir() if e.name.endswith(".yaml"))
+
+
+def family_path(given: Path) -> Path:
+    """The file ``--family`` names: ``given`` if such a file exists (or it is a path with a
+    directory part), else the packaged family of that name; UsageError listing the packaged
+    names when it is neither."""
+    from importlib.resources import as_file, files
+
+    text = str(given)
+    if given.exists() or given.parent != Path("."):
+        return given
+    name = text[: -len(".yaml")] if text.endswith(".yaml") else text
+    folder = files("feeders").joinpath(PACKAGED_FAMILIES)
+    names = sorted(e.name[: -len(".yaml")] for e in folder.iterdir() if e.name.endswith(".yaml"))
+    if name not in names:
+        from feeders.fields import shown
+
+        raise UsageError(
+            f"--family: '{shown(text)}' is neither a file nor a packaged family; "
+            f"packaged families: {', '.join(names)}"
+        )
+    with as_file(folder.joinpath(f"{name}.yaml")) as path:
+        return Path(path)
+
+
+def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFamily, list[float]]:
+    """The family ``--family`` names and the design ``--values`` gives (its defaults without
+    them), checked: UsageError naming the file and field, or ``--values``."""
+    from feeders.device_family import FamilyError, load_family
+
+    try:
+        family = load_family(family_path(family_file))
+    except FamilyError as exc:
+        raise UsageError(str(exc)) from None
+    if values is None:
+        return family, [float(v) for v in family.default()]
+    names = family.vector_names
+    try:
+        vector = [float(v) for v in values.split(",")]
+    except ValueError:
+        raise UsageError(
+            f"--values = '{values}': expected {len(names)} comma-separated numbers "
+            f"({', '.join(names)})"
+        ) from None
+    if len(vector) != len(names):
+        raise UsageError(
+            f"--values: {len(vector)} numbers given; the family {family.name} has "
+            f"{len(names)} parameters: {', '.join(names)}"
+        )
+    return family, vector
 
 
 def scene_path(given: Path) -> Path:
@@ -69,12 +134,28 @@ def scene_path(given: Path) -> Path:
         return Path(path)
 
 
-def load_scene(design: str | None, scene_file: Path | None) -> Scene:
-    """The scene of ``--design`` / ``--scene``, physically sane (the same checks as a scene
-    file: :func:`feeders.scene_yaml.checked_scene`); UsageError for bad values or a bad file."""
+def load_scene(
+    design: str | None,
+    scene_file: Path | None,
+    family_file: Path | None = None,
+    values: str | None = None,
+) -> Scene:
+    """The scene of ``--design`` / ``--scene`` / ``--family`` (with ``--values``), physically
+    sane (the same checks as a scene file: :func:`feeders.scene_yaml.checked_scene`; a
+    family's build checks its rules and pieces); UsageError for bad values or a bad file."""
     from feeders.design import DesignError
+    from feeders.feeder import DegenerateDesign
     from feeders.scene_spec import design_scene, scene_of
     from feeders.scene_yaml import SceneError
+
+    if values is not None and family_file is None:
+        raise UsageError("--values needs --family (a design's values are --design's)")
+    if family_file is not None:
+        family, vector = load_family_design(family_file, values)
+        try:
+            return family.build(vector)
+        except DegenerateDesign as exc:
+            raise UsageError(f"--values: the family's design cannot be built: {exc}") from None
 
     if design is not None and not design.strip():
         raise UsageError(

@@ -66,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
         check_count(args.samples, "--samples", MAX_SAMPLES)
         if not 0.0 <= args.target <= 1.0:
             raise UsageError(f"--target = {args.target} is outside the allowed range [0, 1]")
-    scene = load_scene(args.design, args.scene)
+    scene = load_scene(args.design, args.scene, args.family, args.values)
     if args.samples:
         compile_once(["dynamic"])
         return _verdict(scene, args)
@@ -122,7 +122,13 @@ def _verdict(scene: Scene, args: argparse.Namespace) -> int:
         step=args.step,
         t_max=args.time,
     )
-    if scene.design is not None:
+    if args.family is not None:  # made to tolerance as the family's parameters say
+        from experiments.cli.scenes import load_family_design
+        from experiments.drop.family_verdict import family_verdict
+
+        family, vector = load_family_design(args.family, args.values)
+        verdict = family_verdict(family, vector, settings, seed=args.seed)
+    elif scene.design is not None:
         verdict = design_verdict(
             scene.design,
             scene.part,
