@@ -187,6 +187,7 @@ CLAIMS: dict[str, Check] = {
     ),
     "partfeeder bench --trial": contains(r"trial"),
     "partfeeder bench --verdict": contains(r"^  wilson / screen \+ sprt: "),
+    "partfeeder simulate --family fig1 --samples 40": contains(r"^open_trailing "),
     "partfeeder run --json": is_json,
     "partfeeder plan --design table3 --orientation both --time 5 --seed 1 --out out": both(
         plan_solved, files("out/*.png")
