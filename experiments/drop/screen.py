@@ -15,7 +15,8 @@ verdict's procedure made cheaper in three ways, each measured in docs/verdict.md
   decided by that entry's drops alone: five failures in a row, not five trials of both.
 
 The design *fails* the screen as soon as one entry fails its test, *passes* when every entry
-passes, and is *undecided* after ``max_drops`` drops of an entry; only a failure prunes. A
+passes, and is *undecided* when an entry is still undecided after ``max_drops`` drops of its
+own; only a failure prunes. A
 drop's draw is :func:`experiments.drop.perturbations.draw` of the screen's seed and the drop's
 index, so the same seed gives the same screen on any executor. The exact operating
 characteristic: :func:`experiments.drop.operating.screen_operating_point`.
@@ -85,12 +86,23 @@ def wald_of(settings: ScreenSettings) -> Wald:
 
 
 def next_entry(
-    test: Wald, statuses: Sequence[str], successes: Sequence[int], drops: Sequence[int]
-) -> int:
-    """The undecided entry most likely to fail so far: the lowest log-likelihood ratio, the
-    first on a tie."""
-    undecided = [k for k, s in enumerate(statuses) if s == UNDECIDED]
-    return min(undecided, key=lambda k: (test.llr(successes[k], drops[k]), k))
+    test: Wald,
+    statuses: Sequence[str],
+    successes: Sequence[int],
+    drops: Sequence[int],
+    max_drops: int | None = None,
+) -> int | None:
+    """The undecided entry most likely to fail so far (the lowest log-likelihood ratio, the
+    first on a tie) among those with fewer than ``max_drops`` drops; None when there is
+    none."""
+    open_ = [
+        k
+        for k, s in enumerate(statuses)
+        if s == UNDECIDED and (max_drops is None or drops[k] < max_drops)
+    ]
+    if not open_:
+        return None
+    return min(open_, key=lambda k: (test.llr(successes[k], drops[k]), k))
 
 
 def screen_decision(statuses: Sequence[str]) -> str:
@@ -144,12 +156,16 @@ def sequence(
 ) -> tuple[tuple[str, ...], tuple[int, ...], tuple[int, ...], int]:
     """The screen's loop: ``drop(k, index)`` (success, or None for a fault, which is not
     counted) from entry :func:`next_entry`, the draw ``index`` counting up from 0, until
-    :func:`screen_decision` decides, an entry has had ``max_drops`` drops, or ``max_drops``
-    faults have come. Returns per entry the statuses, successes and drops, and the faults."""
+    :func:`screen_decision` decides, every undecided entry has had ``max_drops`` drops (each
+    entry's test is truncated at ``max_drops`` of its own, as the operating characteristic
+    assumes), or ``max_drops`` faults have come. Returns per entry the statuses, successes
+    and drops, and the faults."""
     statuses, successes, drops = [UNDECIDED] * entries, [0] * entries, [0] * entries
     faults = index = 0
-    while screen_decision(statuses) == UNDECIDED and max(drops) < max_drops:
-        k = next_entry(test, statuses, successes, drops)
+    while screen_decision(statuses) == UNDECIDED:
+        k = next_entry(test, statuses, successes, drops, max_drops)
+        if k is None:
+            break
         success = drop(k, index)
         index += 1
         if success is None:

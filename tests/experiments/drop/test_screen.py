@@ -54,6 +54,21 @@ def test_the_next_drop_is_from_the_entry_most_likely_to_fail():
     assert next_entry(test, [UNDECIDED, UNDECIDED], [0, 0], [0, 0]) == 0  # tie: the first
     assert next_entry(test, [UNDECIDED, UNDECIDED], [3, 2], [3, 3]) == 1
     assert next_entry(test, [WORKS, UNDECIDED], [30, 20], [30, 20]) == 1  # decided: not again
+    assert next_entry(test, [UNDECIDED, UNDECIDED], [0, 2], [3, 2], max_drops=3) == 1
+    assert next_entry(test, [UNDECIDED, WORKS], [0, 2], [3, 2], max_drops=3) is None
+
+
+def test_each_entry_is_tested_to_its_own_max_drops_as_the_characteristic_assumes():
+    """Entry 0 stays undecided through its 3 drops (F, S, S: LLR -1.02); entry 1, which fails
+    every drop, is then still tested, to its own 3, and fails the design. (The loop once
+    stopped when any entry reached max_drops, leaving the design undecided; the exact
+    operating characteristic truncates each entry's test at its own max_drops.)"""
+    outcomes = {0: iter([False, True, True]), 1: iter([False] * 3)}
+    statuses, _, drops, faults = sequence(
+        wald_of(ScreenSettings()), 2, 3, lambda k, i: next(outcomes[k])
+    )
+    assert statuses == (UNDECIDED, FAILS) and drops == (3, 3) and faults == 0
+    assert screen_decision(statuses) == FAILS
 
 
 def test_faults_are_drawn_again_and_not_counted():
