@@ -45,8 +45,11 @@ def _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds, p
 
 
 @njit(cache=True)
-def _zero_slacks(verts, circles):
-    return np.zeros(verts.shape[0]), np.zeros(circles.shape[0])
+def _slacks(verts, circles, polygon_slack, disc_slack):
+    """The polygons' and discs' slacks as given, zeros (Eq. 9 exactly) for one not given."""
+    ps = np.zeros(verts.shape[0]) if polygon_slack is None else polygon_slack
+    ds = np.zeros(circles.shape[0]) if disc_slack is None else disc_slack
+    return ps, ds
 
 
 @njit(cache=True)
@@ -65,11 +68,7 @@ def pose_is_valid(
 ):
     """psi_n(q) >= -slack for every obstacle (slacks in length, per polygon ``(P,)`` and disc
     ``(C,)``; None: 0, Eq. 9's psi_n >= 0), and the centre of mass within the bounds."""
-    ps, ds = _zero_slacks(verts, circles)
-    if polygon_slack is not None:
-        ps = polygon_slack
-    if disc_slack is not None:
-        ds = disc_slack
+    ps, ds = _slacks(verts, circles, polygon_slack, disc_slack)
     world = np.empty_like(body)
     return _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds, ps, ds)
 
@@ -96,11 +95,7 @@ def propagate_increments(
     """Eq. 9 stepped at ``h`` for ``duration``, a step valid when it penetrates no obstacle
     deeper than its slack (as :func:`pose_is_valid`); returns ``(x, y, yaw, steps_taken,
     blocked)``."""
-    ps, ds = _zero_slacks(verts, circles)
-    if polygon_slack is not None:
-        ps = polygon_slack
-    if disc_slack is not None:
-        ds = disc_slack
+    ps, ds = _slacks(verts, circles, polygon_slack, disc_slack)
     n = max(1, math.ceil(duration / h - 1e-9))
     dt = duration / n
     yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
