@@ -54,33 +54,48 @@ def add_scene_arguments(p: argparse.ArgumentParser) -> None:
 
 def packaged_scene_names() -> list[str]:
     """The scenes packaged with partfeeder (``experiments/scenes/*.yaml``), by name."""
+    return _packaged_names("experiments", PACKAGED_SCENES)
+
+
+def _packaged_names(package: str, folder: str) -> list[str]:
+    """The ``*.yaml`` files of ``package``'s data ``folder``, by name."""
     from importlib.resources import files
 
-    folder = files("experiments").joinpath(PACKAGED_SCENES)
-    return sorted(e.name[: -len(".yaml")] for e in folder.iterdir() if e.name.endswith(".yaml"))
+    found = files(package).joinpath(folder).iterdir()
+    return sorted(e.name[: -len(".yaml")] for e in found if e.name.endswith(".yaml"))
 
 
-def family_path(given: Path) -> Path:
-    """The file ``--family`` names: ``given`` if such a file exists (or it is a path with a
-    directory part), else the packaged family of that name; UsageError listing the packaged
-    names when it is neither."""
+def _file_or_packaged(
+    given: Path, flag: str, kind: tuple[str, str], package: str, folder: str
+) -> Path:
+    """``given`` if such a file exists (or it is a path with a directory part), else the
+    ``kind`` (singular, plural) packaged with partfeeder under that name (``table3`` or ``table3.yaml``), read
+    through importlib.resources so that it works from an installed wheel in any directory;
+    UsageError naming ``flag`` and listing the packaged names when it is neither."""
     from importlib.resources import as_file, files
 
     text = str(given)
     if given.exists() or given.parent != Path("."):
         return given
     name = text[: -len(".yaml")] if text.endswith(".yaml") else text
-    folder = files("feeders").joinpath(PACKAGED_FAMILIES)
-    names = sorted(e.name[: -len(".yaml")] for e in folder.iterdir() if e.name.endswith(".yaml"))
+    names = _packaged_names(package, folder)
     if name not in names:
         from feeders.fields import shown
 
         raise UsageError(
-            f"--family: '{shown(text)}' is neither a file nor a packaged family; "
-            f"packaged families: {', '.join(names)}"
+            f"{flag}: '{shown(text)}' is neither a file nor a packaged {kind[0]}; "
+            f"packaged {kind[1]}: {', '.join(names)}"
         )
-    with as_file(folder.joinpath(f"{name}.yaml")) as path:
+    resource = files(package).joinpath(folder, f"{name}.yaml")
+    with as_file(resource) as path:  # a real file for an installed package (not zipped)
         return Path(path)
+
+
+def family_path(given: Path) -> Path:
+    """The file ``--family`` names: a file, or a family packaged with partfeeder."""
+    return _file_or_packaged(
+        given, "--family", ("family", "families"), "feeders", PACKAGED_FAMILIES
+    )
 
 
 def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFamily, list[float]]:
@@ -111,27 +126,10 @@ def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFam
 
 
 def scene_path(given: Path) -> Path:
-    """The file ``--scene`` names: ``given`` if such a file exists (or it is a path with a
-    directory part), else the packaged scene of that name (``table3`` or ``table3.yaml``),
-    read through importlib.resources so that it works from an installed wheel in any
-    directory; UsageError listing the packaged names when it is neither."""
-    from importlib.resources import as_file, files
-
-    text = str(given)
-    if given.exists() or given.parent != Path("."):
-        return given
-    name = text[: -len(".yaml")] if text.endswith(".yaml") else text
-    names = packaged_scene_names()
-    if name not in names:
-        from feeders.fields import shown
-
-        raise UsageError(
-            f"--scene: '{shown(text)}' is neither a file nor a packaged scene; "
-            f"packaged scenes: {', '.join(names)}"
-        )
-    resource = files("experiments").joinpath(PACKAGED_SCENES, f"{name}.yaml")
-    with as_file(resource) as path:  # a real file for an installed package (not zipped)
-        return Path(path)
+    """The file ``--scene`` names: a file, or a scene packaged with partfeeder."""
+    return _file_or_packaged(
+        given, "--scene", ("scene", "scenes"), "experiments", PACKAGED_SCENES
+    )
 
 
 def load_scene(

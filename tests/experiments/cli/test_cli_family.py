@@ -52,7 +52,10 @@ goal: {x: [0, 1], y: [-1, 0], yaw: 0, yaw_tol: 0.5}
 @pytest.mark.parametrize(
     "args, message",
     [
-        (("--family", "nope"), "--family: 'nope' is neither a file nor a packaged family"),
+        (
+            ("--family", "nope"),
+            "--family: 'nope' is neither a file nor a packaged family; packaged families: fig1",
+        ),
         (("--values", "1,2"), "--values needs --family"),
         (("--family", "fig1", "--values", "a,b"), "--values = 'a,b': expected 6"),
         (("--family", "fig1", "--values", "0.5,1.2,1.2,-0.6,1.0,5.0"), "cannot be built"),
