@@ -69,9 +69,10 @@ def _file_or_packaged(
     given: Path, flag: str, kind: tuple[str, str], package: str, folder: str
 ) -> Path:
     """``given`` if such a file exists (or it is a path with a directory part), else the
-    ``kind`` (singular, plural) packaged with partfeeder under that name (``table3`` or ``table3.yaml``), read
-    through importlib.resources so that it works from an installed wheel in any directory;
-    UsageError naming ``flag`` and listing the packaged names when it is neither."""
+    ``kind`` (singular, plural) packaged with partfeeder under that name (``table3`` or
+    ``table3.yaml``), read through importlib.resources so that it works from an installed
+    wheel in any directory; UsageError naming ``flag`` and listing the packaged names when
+    it is neither."""
     from importlib.resources import as_file, files
 
     text = str(given)
