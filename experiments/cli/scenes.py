@@ -128,9 +128,7 @@ def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFam
 
 def scene_path(given: Path) -> Path:
     """The file ``--scene`` names: a file, or a scene packaged with partfeeder."""
-    return _file_or_packaged(
-        given, "--scene", ("scene", "scenes"), "experiments", PACKAGED_SCENES
-    )
+    return _file_or_packaged(given, "--scene", ("scene", "scenes"), "experiments", PACKAGED_SCENES)
 
 
 def load_scene(
