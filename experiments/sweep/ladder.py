@@ -8,7 +8,10 @@ the default; issue 21). Only a proof stops a design by default: it cannot be bui
 verdict says it fails, or an exact test says it is infeasible. The
 designs of the holdout, a seeded random sample, climb every rung whatever their verdicts:
 their verdicts at the top level measure how well each lower level prunes (precision and
-recall) and what evaluating every design at the top would have cost (the speed-up).
+recall) and what evaluating every design at the top would have cost (the speed-up). The
+designs of the audit, a second seeded sample, reach the passive verdict whatever the rungs
+below it say (and climb no further unless they work): they measure, at the cost of verdicts
+only, what a rung that stops designs before the verdict (the screen) threw away.
 
 A design's next rung is submitted as soon as its result arrives, so the workers never wait
 for a whole level to end. Results are stored as they come (see ``results_db``); a sweep
@@ -91,7 +94,7 @@ def pending_jobs(
     audit: AbstractSet[int] = frozenset(),
 ) -> list[SweepJob]:
     """The next job of every design, from what is stored: each design climbs from rung 0
-    while :func:`climbs` says so (or it is in the holdout and not quarantined); its first
+    while :func:`goes_on` says so (and it is not quarantined); its first
     rung that is not stored is its job. Designs that are finished have none."""
     jobs = []
     for design_id, values in designs.items():
