@@ -40,7 +40,7 @@ def test_bench_is_valid_compiled(benchmark, work: Workload) -> None:
     """(b) pose_is_valid over the batch inside one compiled numba loop (compiled before timing)."""
     a = work.level.arrays
     poses = np.ascontiguousarray(work.poses)
-    args = (poses, a.body, a.verts, a.counts, a.aabbs, a.circles, a.bounds)
+    args = (poses, *a.pose_scene)
     count_valid(*args)
     benchmark.extra_info["checks_per_round"] = len(poses)
     benchmark(count_valid, *args)

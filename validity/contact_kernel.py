@@ -401,17 +401,18 @@ def _depth_in(b: np.ndarray, nb: int, px: float, py: float) -> float:
 
 
 @njit(cache=True)
-def _add_axis_contact(world, n, b, nb, surface, contacts, nc) -> int:
+def _add_axis_contact(world, n, b, nb, part_surface, surface, contacts, nc) -> int:
     """The contact of an overlap deeper than any vertex of either shape lies inside the other
     (two corners passed each other, or the part straddles a thin piece): along the
-    separating axis of least penetration (the part's edges and the piece's surface edges), at
+    separating axis of least penetration (the surface edges of the part and of the piece), at
     the deepest vertex of the other shape, with the overlap as its depth."""
     best, side, axis = -np.inf, 0, -1
-    last = surface.shape[0] - 1
+    last, last_p = surface.shape[0] - 1, part_surface.shape[0] - 1
     for which, a, na, c, nc_ in ((0, world, n, b, nb), (1, b, nb, world, n)):
         for i in range(na):
             nx, ny, ok = _edge_normal(a, i, na)
-            if not ok or (which == 1 and not surface[min(i, last)]):
+            real = part_surface[min(i, last_p)] if which == 0 else surface[min(i, last)]
+            if not ok or not real:
                 continue
             low = np.inf
             for k in range(nc_):
@@ -448,8 +449,12 @@ def find_contacts(
     corners: np.ndarray,
     margin: float,
     contacts: np.ndarray,
+    nc: int = 0,
+    part_surface: np.ndarray = _ALL_TRUE,
+    part_corners: np.ndarray = _ALL_TRUE,
 ) -> tuple[int, float]:
-    """Contacts of the placed part ``world (n, 2)`` with gap below ``margin``.
+    """Contacts of the placed convex part (or part piece) ``world (n, 2)`` with gap below
+    ``margin``, appended after the ``nc`` rows already in ``contacts``.
 
     Writes rows ``(gap, nx, ny, px, py)`` into ``contacts (MAX_CONTACTS, 5)``: the point p is
     on the part and n points from the obstacle into the part. Returns ``(count, clear)``:
@@ -457,15 +462,20 @@ def find_contacts(
     there is none), so a caller with no contacts knows how far the part may move before one
     can appear. ``surface (P, K)`` marks the polygons' real surface edges
     (:mod:`validity.solid_surface`), ``corners (P, K)`` their contact corners
-    (:func:`corner_vertices`). Broad phase: obstacles whose bounding box is ``margin`` or more
-    away are bounded by that box gap and not tested further.
+    (:func:`corner_vertices`). ``part_surface (n,)`` and ``part_corners (n,)`` are the same
+    flags for a piece of a composite part (its seams with the part's other pieces are no
+    surface, its flat joints no corners; default: every edge and vertex is real). Broad phase:
+    obstacles whose bounding box is ``margin`` or more away are bounded by that box gap and
+    not tested further.
     """
     n = world.shape[0]
     x0, y0, x1, y1 = _box_of(world)
-    nc = 0
     clear = np.inf
+    last_pc = part_corners.shape[0] - 1
     buried = 0  # bit k: part corner k is strictly inside the solid (parts have < 63 corners)
     for k in range(n):
+        if not part_corners[min(k, last_pc)]:
+            continue
         if _strictly_inside(verts, counts, aabbs, world[k, 0], world[k, 1]):
             buried |= 1 << k
             depth, nx, ny = solid_depth(
@@ -492,6 +502,7 @@ def find_contacts(
             if (
                 d < margin
                 and not hidden
+                and part_corners[min(k, last_pc)]
                 and (
                     d <= FEATURE_SLOP
                     or _keeps(b, nb, edge, cx, cy, at_vertex, True, world, n, b, nb, gap > 0.0)
@@ -501,12 +512,12 @@ def find_contacts(
         for j in range(nb):
             if not corners[p, j]:
                 continue
-            d, nx, ny, cx, cy, at_vertex, _, edge = point_polygon_feature(
-                b[j, 0], b[j, 1], world, n, margin
+            d, nx, ny, cx, cy, at_vertex, hidden, edge = point_polygon_feature(
+                b[j, 0], b[j, 1], world, n, margin, part_surface, part_corners
             )
             nearest = min(nearest, d)
             explained = max(explained, -d)
-            if d < margin and (
+            if (d < margin and not hidden) and (
                 d <= FEATURE_SLOP
                 or _keeps(world, n, edge, cx, cy, at_vertex, False, world, n, b, nb, gap > 0.0)
             ):
@@ -518,7 +529,7 @@ def find_contacts(
                 if buried >> k & 1:
                     explained = max(explained, -_depth_in(b, nb, world[k, 0], world[k, 1]))
             if not _overlap_below(world, n, b, nb, explained + FEATURE_SLOP):
-                nc = _add_axis_contact(world, n, b, nb, surface[p], contacts, nc)
+                nc = _add_axis_contact(world, n, b, nb, part_surface, surface[p], contacts, nc)
         clear = min(clear, nearest)  # below the margin too when a candidate was not kept
     for q in range(circles.shape[0]):
         ox, oy, r = circles[q, 0], circles[q, 1], circles[q, 2]
@@ -528,10 +539,149 @@ def find_contacts(
         if gap >= margin:
             clear = min(clear, gap)
             continue
-        d, nx, ny, cx, cy, _, _, _ = point_polygon_feature(ox, oy, world, n, margin + r)
+        d, nx, ny, cx, cy, _, hidden, _ = point_polygon_feature(
+            ox, oy, world, n, margin + r, part_surface, part_corners
+        )
         d -= r
-        if d < margin:
+        if d < margin and not hidden:
             nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
         else:
             clear = min(clear, d)
+    return nc, clear
+
+
+@njit(cache=True)
+def _inside_part(world: np.ndarray, wcounts: np.ndarray, px: float, py: float) -> bool:
+    """p strictly inside (by more than round-off) one of the placed part's polygon pieces."""
+    for q in range(world.shape[0]):
+        nb = wcounts[q]
+        inside = True
+        for i in range(nb):
+            j = (i + 1) % nb
+            ex, ey = world[q, j, 0] - world[q, i, 0], world[q, j, 1] - world[q, i, 1]
+            cross = ey * (px - world[q, i, 0]) - ex * (py - world[q, i, 1])
+            if cross > -_TINY * (abs(ex) + abs(ey)) and ex * ex + ey * ey > _TINY * _TINY:
+                inside = False
+                break
+        if inside and nb >= 3:
+            return True
+    return False
+
+
+@njit(cache=True)
+def _disc_contacts(
+    k: int,
+    wdiscs: np.ndarray,
+    world: np.ndarray,
+    wcounts: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    surface: np.ndarray,
+    corners: np.ndarray,
+    margin: float,
+    contacts: np.ndarray,
+    nc: int,
+) -> tuple[int, float]:
+    """Contacts of the part's disc k (placed: ``wdiscs (D, 3)``) with the obstacles, as
+    :func:`find_contacts`'s for a polygon piece: a disc touches a polygon where its centre's
+    nearest surface feature is (a centre inside the solid: its depth in the whole solid,
+    :func:`solid_depth`), and a disc along the line of centres. The contact point is the
+    disc's point nearest the obstacle; one that lies inside another piece of the part is on no
+    surface of the part and is dropped."""
+    cx, cy, r = wdiscs[k, 0], wdiscs[k, 1], wdiscs[k, 2]
+    clear = np.inf
+    if _strictly_inside(verts, counts, aabbs, cx, cy):
+        depth, nx, ny = solid_depth(cx, cy, verts, counts, aabbs, surface, circles)
+        if depth < np.inf:
+            nc = _add(contacts, nc, -depth - r, nx, ny, cx - r * nx, cy - r * ny)
+    else:
+        for p in range(verts.shape[0]):
+            box = aabbs[p]
+            gap = math.hypot(max(box[0] - cx, 0.0, cx - box[2]), max(box[1] - cy, 0.0, cy - box[3]))
+            if gap - r >= margin:
+                clear = min(clear, gap - r)
+                continue
+            d, nx, ny, _, _, _, hidden, _ = point_polygon_feature(
+                cx, cy, verts[p], counts[p], margin + r, surface[p], corners[p]
+            )
+            d -= r
+            px, py = cx - r * nx, cy - r * ny
+            if d < margin and not hidden and not _inside_part(world, wcounts, px, py):
+                nc = _add(contacts, nc, d, nx, ny, px, py)
+            else:
+                clear = min(clear, d)
+    for q in range(circles.shape[0]):
+        dx, dy = cx - circles[q, 0], cy - circles[q, 1]
+        dist = math.hypot(dx, dy)
+        d = dist - r - circles[q, 2]
+        if d >= margin or dist <= _TINY:
+            clear = min(clear, d)
+            continue
+        nx, ny = dx / dist, dy / dist
+        px, py = cx - r * nx, cy - r * ny
+        if _inside_part(world, wcounts, px, py):
+            clear = min(clear, d)
+        else:
+            nc = _add(contacts, nc, d, nx, ny, px, py)
+    return nc, clear
+
+
+@njit(cache=True)
+def find_part_contacts(
+    world: np.ndarray,
+    wcounts: np.ndarray,
+    part_surface: np.ndarray,
+    part_corners: np.ndarray,
+    wdiscs: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    surface: np.ndarray,
+    corners: np.ndarray,
+    margin: float,
+    contacts: np.ndarray,
+) -> tuple[int, float]:
+    """:func:`find_contacts` for a part of convex pieces ``world (Q, K, 2)`` (placed,
+    ``wcounts (Q,)`` vertices each, padding repeating the last) with their surface and corner
+    flags ``(Q, K)`` (:mod:`validity.solid_surface` applied to the part: seams between its
+    pieces are no surface) and discs ``wdiscs (D, 3)`` (placed). Returns ``(count, clear)``
+    over every piece: the contacts of each piece with the obstacles, none between pieces."""
+    nc = 0
+    clear = np.inf
+    for q in range(world.shape[0]):
+        nc, c = find_contacts(
+            world[q, : wcounts[q]],
+            verts,
+            counts,
+            aabbs,
+            circles,
+            surface,
+            corners,
+            margin,
+            contacts,
+            nc,
+            part_surface[q],
+            part_corners[q],
+        )
+        clear = min(clear, c)
+    for k in range(wdiscs.shape[0]):
+        nc, c = _disc_contacts(
+            k,
+            wdiscs,
+            world,
+            wcounts,
+            verts,
+            counts,
+            aabbs,
+            circles,
+            surface,
+            corners,
+            margin,
+            contacts,
+            nc,
+        )
+        clear = min(clear, c)
     return nc, clear

@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 from feeders.scene import Scene
-from validity.geometry_kernel import penetrates_deeper_than, pose_vertices
+from validity.geometry_kernel import part_penetrates_deeper_than, place_part
 from validity.scene_arrays import SceneArrays
 
 DEFAULT_STEP = 0.01  # h (s): with |u| <= 1 a step moves a corner by < 0.03, far below a wall
@@ -35,13 +35,17 @@ def _in_bounds(x: float, y: float, bounds: np.ndarray) -> bool:
 
 
 @njit(cache=True)
-def _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds, ps, ds):
-    """:func:`pose_is_valid` writing the placed corners into the caller's buffer ``world``;
-    ``ps (P,)``, ``ds (C,)``: the polygons' and discs' slacks."""
+def _valid_into(
+    world, wdiscs, x, y, yaw, body, bcounts, bdiscs, verts, counts, aabbs, circles, bounds, ps, ds
+):
+    """:func:`pose_is_valid` writing the placed part into the caller's buffers ``world`` and
+    ``wdiscs``; ``ps (P,)``, ``ds (C,)``: the polygons' and discs' slacks."""
     if not _in_bounds(x, y, bounds):
         return False
-    pose_vertices(body, x, y, yaw, world)
-    return not penetrates_deeper_than(world, verts, counts, aabbs, circles, ps, ds)
+    place_part(body, bcounts, bdiscs, x, y, yaw, world, wdiscs)
+    return not part_penetrates_deeper_than(
+        world, bcounts, wdiscs, verts, counts, aabbs, circles, ps, ds
+    )
 
 
 @njit(cache=True)
@@ -58,6 +62,8 @@ def pose_is_valid(
     y: float,
     yaw: float,
     body,
+    bcounts,
+    bdiscs,
     verts,
     counts,
     aabbs,
@@ -67,10 +73,29 @@ def pose_is_valid(
     disc_slack=None,
 ):
     """psi_n(q) >= -slack for every obstacle (slacks in length, per polygon ``(P,)`` and disc
-    ``(C,)``; None: 0, Eq. 9's psi_n >= 0), and the centre of mass within the bounds."""
+    ``(C,)``; None: 0, Eq. 9's psi_n >= 0), and the centre of mass within the bounds. The part:
+    convex pieces ``body (Q, K, 2)`` with ``bcounts (Q,)`` vertices and discs ``bdiscs (D, 3)``,
+    body frame (:class:`validity.scene_arrays.PartArrays`)."""
     ps, ds = _slacks(verts, circles, polygon_slack, disc_slack)
     world = np.empty_like(body)
-    return _valid_into(world, x, y, yaw, body, verts, counts, aabbs, circles, bounds, ps, ds)
+    wdiscs = np.empty_like(bdiscs)
+    return _valid_into(
+        world,
+        wdiscs,
+        x,
+        y,
+        yaw,
+        body,
+        bcounts,
+        bdiscs,
+        verts,
+        counts,
+        aabbs,
+        circles,
+        bounds,
+        ps,
+        ds,
+    )
 
 
 @njit(cache=True)
@@ -84,6 +109,8 @@ def propagate_increments(
     duration,
     h,
     body,
+    bcounts,
+    bdiscs,
     verts,
     counts,
     aabbs,
@@ -100,12 +127,27 @@ def propagate_increments(
     dt = duration / n
     yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
     world = np.empty_like(body)  # one buffer for every step of this propagation
+    wdiscs = np.empty_like(bdiscs)
     for k in range(n):
         nx, ny = x + dt * vx, y + dt * vy
         nyaw = yaw + dt * omega
         nyaw = (nyaw + math.pi) % (2.0 * math.pi) - math.pi
         if not _valid_into(
-            world, nx, ny, nyaw, body, verts, counts, aabbs, circles, bounds, ps, ds
+            world,
+            wdiscs,
+            nx,
+            ny,
+            nyaw,
+            body,
+            bcounts,
+            bdiscs,
+            verts,
+            counts,
+            aabbs,
+            circles,
+            bounds,
+            ps,
+            ds,
         ):
             return x, y, yaw, k, True
         x, y, yaw = nx, ny, nyaw
@@ -156,7 +198,7 @@ class GeometricLevel:
         self.step = float(step)
         self.arrays = SceneArrays.from_scene(scene)
         a = self.arrays
-        self._geometry = (a.body, a.verts, a.counts, a.aabbs, a.circles)
+        self._geometry = a.pose_scene[:-1]
         self.slack = _obstacle_slacks(slack, a.verts.shape[0], a.circles.shape[0])
         self._slacks = (
             np.ascontiguousarray(self.slack[: a.verts.shape[0]]),

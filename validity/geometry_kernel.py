@@ -271,3 +271,160 @@ def penetrates_deeper_than(
         if circle_signed_distance(cx, cy, r, world, n) < -disc_slack[q]:
             return True
     return False
+
+
+@njit(cache=True)
+def place_part(
+    body: np.ndarray,
+    bcounts: np.ndarray,
+    bdiscs: np.ndarray,
+    x: float,
+    y: float,
+    yaw: float,
+    world: np.ndarray,
+    wdiscs: np.ndarray,
+) -> None:
+    """Write a part's pieces (body frame: polygons ``body (Q, K, 2)`` with ``bcounts (Q,)``
+    vertices, discs ``bdiscs (D, 3)``) placed at pose into ``world`` and ``wdiscs``."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    for q in range(body.shape[0]):
+        for i in range(body.shape[1]):
+            bx, by = body[q, i, 0], body[q, i, 1]
+            world[q, i, 0] = x + c * bx - s * by
+            world[q, i, 1] = y + s * bx + c * by
+    for k in range(bdiscs.shape[0]):
+        bx, by = bdiscs[k, 0], bdiscs[k, 1]
+        wdiscs[k, 0] = x + c * bx - s * by
+        wdiscs[k, 1] = y + s * bx + c * by
+        wdiscs[k, 2] = bdiscs[k, 2]
+
+
+@njit(cache=True)
+def part_radius(body: np.ndarray, bcounts: np.ndarray, bdiscs: np.ndarray) -> float:
+    """Largest distance from the centre of mass (the body frame's origin) to a point of the
+    part: how far a turn of one radian moves any point of it."""
+    radius = 0.0
+    for q in range(body.shape[0]):
+        for i in range(bcounts[q]):
+            radius = max(radius, math.hypot(body[q, i, 0], body[q, i, 1]))
+    for k in range(bdiscs.shape[0]):
+        radius = max(radius, math.hypot(bdiscs[k, 0], bdiscs[k, 1]) + bdiscs[k, 2])
+    return radius
+
+
+@njit(cache=True)
+def _disc_clearance(cx, cy, r, verts, counts, aabbs, circles, best, stop_below) -> float:
+    """``min(best, signed distance of the disc (c, r) to every obstacle)``, stopping below
+    ``stop_below``."""
+    for p in range(verts.shape[0]):
+        b = aabbs[p]
+        gx = max(b[0] - cx, 0.0, cx - b[2])
+        gy = max(b[1] - cy, 0.0, cy - b[3])
+        gap = math.sqrt(gx * gx + gy * gy)
+        if gap > 0.0 and gap - r >= best:
+            continue
+        best = min(best, circle_signed_distance(cx, cy, r, verts[p], counts[p]))
+        if best < stop_below:
+            return best
+    for q in range(circles.shape[0]):
+        d = math.hypot(cx - circles[q, 0], cy - circles[q, 1]) - r - circles[q, 2]
+        best = min(best, d)
+        if best < stop_below:
+            return best
+    return best
+
+
+@njit(cache=True)
+def part_clearance(
+    world: np.ndarray,
+    wcounts: np.ndarray,
+    wdiscs: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    stop_below: float,
+) -> float:
+    """:func:`clearance_at` of a placed part of convex pieces ``world (Q, K, 2)`` (``wcounts``
+    vertices each) and discs ``wdiscs (D, 3)``: the smallest over its pieces (a piece's
+    penetration depth is its own, as an obstacle piece's is)."""
+    best = np.inf
+    for q in range(world.shape[0]):
+        best = min(
+            best, clearance_at(world[q, : wcounts[q]], verts, counts, aabbs, circles, stop_below)
+        )
+        if best < stop_below:
+            return best
+    for k in range(wdiscs.shape[0]):
+        best = _disc_clearance(
+            wdiscs[k, 0],
+            wdiscs[k, 1],
+            wdiscs[k, 2],
+            verts,
+            counts,
+            aabbs,
+            circles,
+            best,
+            stop_below,
+        )
+        if best < stop_below:
+            return best
+    return best
+
+
+@njit(cache=True)
+def part_clearance_at_pose(
+    body, bcounts, bdiscs, x, y, yaw, verts, counts, aabbs, circles, stop_below
+) -> float:
+    """:func:`part_clearance` for the part (body frame) placed at ``(x, y, yaw)``."""
+    world = np.empty_like(body)
+    wdiscs = np.empty_like(bdiscs)
+    place_part(body, bcounts, bdiscs, x, y, yaw, world, wdiscs)
+    return part_clearance(world, bcounts, wdiscs, verts, counts, aabbs, circles, stop_below)
+
+
+@njit(cache=True)
+def part_penetrates_deeper_than(
+    world: np.ndarray,
+    wcounts: np.ndarray,
+    wdiscs: np.ndarray,
+    verts: np.ndarray,
+    counts: np.ndarray,
+    aabbs: np.ndarray,
+    circles: np.ndarray,
+    polygon_slack: np.ndarray,
+    disc_slack: np.ndarray,
+) -> bool:
+    """:func:`penetrates_deeper_than` for a placed part of convex pieces and discs: some
+    piece overlaps some obstacle by more than that obstacle's slack."""
+    for q in range(world.shape[0]):
+        if penetrates_deeper_than(
+            world[q, : wcounts[q]], verts, counts, aabbs, circles, polygon_slack, disc_slack
+        ):
+            return True
+    for k in range(wdiscs.shape[0]):
+        cx, cy, r = wdiscs[k, 0], wdiscs[k, 1], wdiscs[k, 2]
+        for p in range(verts.shape[0]):
+            b = aabbs[p]
+            if b[0] > cx + r or b[2] < cx - r or b[1] > cy + r or b[3] < cy - r:
+                continue
+            if circle_signed_distance(cx, cy, r, verts[p], counts[p]) < -polygon_slack[p]:
+                return True
+        for q in range(circles.shape[0]):
+            d = math.hypot(cx - circles[q, 0], cy - circles[q, 1]) - r - circles[q, 2]
+            if d < -disc_slack[q]:
+                return True
+    return False
+
+
+@njit(cache=True)
+def part_penetrates(world, wcounts, wdiscs, verts, counts, aabbs, circles) -> bool:
+    """:func:`penetrates` for a placed part of convex pieces and discs (psi_n < 0 anywhere)."""
+    for q in range(world.shape[0]):
+        if penetrates(world[q, : wcounts[q]], verts, counts, aabbs, circles):
+            return True
+    for k in range(wdiscs.shape[0]):
+        cx, cy, r = wdiscs[k, 0], wdiscs[k, 1], wdiscs[k, 2]
+        if _disc_clearance(cx, cy, r, verts, counts, aabbs, circles, np.inf, 0.0) < 0.0:
+            return True
+    return False

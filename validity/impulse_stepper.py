@@ -26,8 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
-from validity.contact_kernel import MAX_CONTACTS, find_contacts
-from validity.geometry_kernel import penetrates, pose_vertices
+from validity.contact_kernel import MAX_CONTACTS, find_part_contacts
+from validity.geometry_kernel import part_penetrates, part_radius, place_part
 from validity.impact import STATS_FIELDS, impact_workspace, resolve_impacts
 
 TELEMETRY_COLUMNS = ("impacts", "sub_steps", "jammed", "stalled", "halvings")
@@ -93,6 +93,10 @@ def kinematic_kernel(
     band: float,
     max_impacts: int,
     body: np.ndarray,
+    body_counts: np.ndarray,
+    body_surface: np.ndarray,
+    body_corners: np.ndarray,
+    body_discs: np.ndarray,
     verts: np.ndarray,
     counts: np.ndarray,
     aabbs: np.ndarray,
@@ -113,15 +117,15 @@ def kinematic_kernel(
     ``tele (n_steps, len(TELEMETRY_COLUMNS))`` are filled when they have rows; ``summary``
     accumulates ``SUMMARY_FIELDS``. ``out_state`` receives the final state.
     """
-    radius = 0.0
-    for i in range(body.shape[0]):
-        radius = max(radius, math.hypot(body[i, 0], body[i, 1]))
+    radius = part_radius(body, body_counts, body_discs)
     target = 0.5 * band
     record = traj.shape[0] > 0
     x, y, yaw = state0[0], state0[1], state0[2]
     vel_out = state0[3:6].copy()
     world = np.empty_like(body)
     probe = np.empty_like(body)
+    wdiscs = np.empty_like(body_discs)
+    probe_discs = np.empty_like(body_discs)
     contacts = np.zeros((MAX_CONTACTS, 5))
     work = impact_workspace(MAX_CONTACTS)
     stats = np.zeros(len(STATS_FIELDS))
@@ -143,10 +147,22 @@ def kinematic_kernel(
             speed = math.hypot(vel[0], vel[1]) + abs(vel[2]) * radius
             if speed == 0.0:
                 break
-            pose_vertices(body, x, y, yaw, world)
+            place_part(body, body_counts, body_discs, x, y, yaw, world, wdiscs)
             margin = max(_MIN_MARGIN, speed * t_left + band)
-            nc, _ = find_contacts(
-                world, verts, counts, aabbs, circles, surface, corners, margin, contacts
+            nc, _ = find_part_contacts(
+                world,
+                body_counts,
+                body_surface,
+                body_corners,
+                wdiscs,
+                verts,
+                counts,
+                aabbs,
+                circles,
+                surface,
+                corners,
+                margin,
+                contacts,
             )
             for i in range(nc):
                 if contacts[i, 0] <= band:
@@ -164,8 +180,10 @@ def kinematic_kernel(
                 continue
             for _ in range(_MAX_HALVINGS + 1):
                 nx, ny, nyaw = x + t * vel[0], y + t * vel[1], yaw + t * vel[2]
-                pose_vertices(body, nx, ny, nyaw, probe)
-                if not penetrates(probe, verts, counts, aabbs, circles):
+                place_part(body, body_counts, body_discs, nx, ny, nyaw, probe, probe_discs)
+                if not part_penetrates(
+                    probe, body_counts, probe_discs, verts, counts, aabbs, circles
+                ):
                     break
                 t *= 0.5
                 halvings += 1

@@ -43,7 +43,7 @@ import math
 import numpy as np
 from numba import njit
 
-from validity.contact_kernel import MAX_CONTACTS, find_contacts
+from validity.contact_kernel import MAX_CONTACTS, find_part_contacts
 from validity.contact_lcp import (
     FAILED,
     FALLBACK_FRICTIONLESS,
@@ -53,7 +53,7 @@ from validity.contact_lcp import (
     lcp_columns,
     solve_with_fallback,
 )
-from validity.geometry_kernel import pose_vertices
+from validity.geometry_kernel import part_radius, place_part
 from validity.lcp import LCP_REGULARISED, LCP_SOLVED, guess_basis, solve_from_basis, solve_lcp
 
 # Per-step telemetry columns.
@@ -112,14 +112,6 @@ SUMMARY_FIELDS = (
 # Why a run ended.
 RAN_FULL, CROSSED, AT_REST, LEFT_BOUNDS = range(4)
 END_REASONS = ("duration", "crossed", "at_rest", "left_bounds")
-
-
-@njit(cache=True)
-def _radius(body: np.ndarray) -> float:
-    r = 0.0
-    for i in range(body.shape[0]):
-        r = max(r, math.hypot(body[i, 0], body[i, 1]))
-    return r
 
 
 @njit(cache=True)
@@ -196,6 +188,10 @@ def simulate_kernel(
     rest_speed: float,
     rest_steps: int,
     body: np.ndarray,
+    body_counts: np.ndarray,
+    body_surface: np.ndarray,
+    body_corners: np.ndarray,
+    body_discs: np.ndarray,
     verts: np.ndarray,
     counts: np.ndarray,
     aabbs: np.ndarray,
@@ -226,10 +222,11 @@ def simulate_kernel(
     minv = np.array([1.0 / mass, 1.0 / mass, 1.0 / inertia])
     ax, ay = gravity[0] + wrench[0] / mass, gravity[1] + wrench[1] / mass
     alpha = wrench[2] / inertia
-    radius = _radius(body)
+    radius = part_radius(body, body_counts, body_discs)
     accel = math.hypot(ax, ay) + radius * abs(alpha)
 
     world = np.empty_like(body)
+    wdiscs = np.empty_like(body_discs)
     contacts = np.empty((MAX_CONTACTS, 5))
     wn = np.empty((3, MAX_CONTACTS))
     wt = np.empty((3, MAX_CONTACTS))
@@ -263,9 +260,21 @@ def simulate_kernel(
         else:
             speed = math.hypot(vx, vy) + radius * abs(om)
             margin = margin0 + 2.0 * h * (speed + h * accel)
-            pose_vertices(body, x, y, th, world)
-            nc, clear = find_contacts(
-                world, verts, counts, aabbs, circles, surface, corners, margin, contacts
+            place_part(body, body_counts, body_discs, x, y, th, world, wdiscs)
+            nc, clear = find_part_contacts(
+                world,
+                body_counts,
+                body_surface,
+                body_corners,
+                wdiscs,
+                verts,
+                counts,
+                aabbs,
+                circles,
+                surface,
+                corners,
+                margin,
+                contacts,
             )
             summary[S_SEARCHES] += 1
             if nc == 0:

@@ -50,6 +50,8 @@ PROPAGATION_DURATION = 0.5  # s of motion per propagate call (50 steps at h = 0.
 def count_valid(
     poses: np.ndarray,
     body: np.ndarray,
+    bcounts: np.ndarray,
+    bdiscs: np.ndarray,
     verts: np.ndarray,
     counts: np.ndarray,
     aabbs: np.ndarray,
@@ -57,11 +59,21 @@ def count_valid(
     bounds: np.ndarray,
 ) -> int:
     """How many rows ``(x, y, yaw)`` of ``poses`` are valid (compiled loop of (b)); arrays as
-    in :class:`validity.scene_arrays.SceneArrays`."""
+    :attr:`validity.scene_arrays.SceneArrays.pose_scene` gives them."""
     valid = 0
     for k in range(poses.shape[0]):
         if pose_is_valid(
-            poses[k, 0], poses[k, 1], poses[k, 2], body, verts, counts, aabbs, circles, bounds
+            poses[k, 0],
+            poses[k, 1],
+            poses[k, 2],
+            body,
+            bcounts,
+            bdiscs,
+            verts,
+            counts,
+            aabbs,
+            circles,
+            bounds,
         ):
             valid += 1
     return valid
@@ -111,7 +123,7 @@ def table3_workload(seed: int = 1, n_poses: int = 2000, n_cases: int = 20) -> Wo
         if not level.is_valid(q):
             continue
         u = tuple(float(v) for v in rng.uniform(low, high))
-        geometry = (a.body, a.verts, a.counts, a.aabbs, a.circles, a.bounds)
+        geometry = a.pose_scene
         *_, steps, blocked = propagate_increments(
             q[0], q[1], q[2], u[0], u[1], u[2], PROPAGATION_DURATION, level.step, *geometry
         )
@@ -139,7 +151,7 @@ def bench_validity_compiled(work: Workload, repeats: int) -> dict:
     poses = np.ascontiguousarray(work.poses)
 
     def run() -> int:
-        return count_valid(poses, a.body, a.verts, a.counts, a.aabbs, a.circles, a.bounds)
+        return count_valid(poses, *a.pose_scene)
 
     return per_item_us(run, len(poses), repeats)
 

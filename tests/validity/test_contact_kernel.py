@@ -54,8 +54,8 @@ def _case(name: str):
     )
     while len(poses) < N_POSES:
         pose = (rng.uniform(x0, x1), rng.uniform(y0, y1), rng.uniform(-math.pi, math.pi))
-        world = np.empty_like(arrays.body)
-        pose_vertices(arrays.body, *pose, world)
+        world = np.empty_like(arrays.part.body[0])
+        pose_vertices(arrays.part.body[0], *pose, world)
         gap = shapely.Polygon(world).distance(union)
         overlap = shapely.Polygon(world).intersection(union).area
         if gap < 2 * MARGIN and overlap < 0.02:  # near an obstacle, at most slightly in

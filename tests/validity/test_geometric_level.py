@@ -40,9 +40,7 @@ def _increments(
 ) -> tuple:
     """The level's stepping, with its step count and blocked flag: (x, y, yaw, steps, blocked)."""
     a = level.arrays
-    return propagate_increments(
-        *q, *u, duration, level.step, a.body, a.verts, a.counts, a.aabbs, a.circles, a.bounds
-    )
+    return propagate_increments(*q, *u, duration, level.step, *a.pose_scene)
 
 
 def _within(bounds: tuple, x: float, y: float) -> bool:
@@ -156,8 +154,8 @@ def test_blocked_propagation_stops_at_last_valid_pose() -> None:
         if not _within(scene.bounds, nxt[0], nxt[1]):
             at_bounds += 1
             continue
-        world = np.empty_like(a.body)
-        pose_vertices(a.body, *nxt, world)
+        world = np.empty_like(a.part.body[0])
+        pose_vertices(a.part.body[0], *nxt, world)
         assert penetrates(world, a.verts, a.counts, a.aabbs, a.circles), f"{q=} {u=}"
         stops.append((x, y, yaw))
         nexts.append(nxt)

@@ -53,15 +53,15 @@ def test_zero_slack_is_the_old_check_on_random_poses():
     scene = build_feeder(TABLE3)
     level = GeometricLevel(scene)
     a = level.arrays
-    world = np.empty_like(a.body)
+    world = np.empty_like(a.part.body[0])
     poses = _random_poses(scene, 4000, seed=3)
     invalid = 0
     for x, y, yaw in poses:
-        pose_vertices(a.body, x, y, yaw, world)
+        pose_vertices(a.part.body[0], x, y, yaw, world)
         old = not penetrates(world, a.verts, a.counts, a.aabbs, a.circles)  # in bounds: drawn so
         assert level.is_valid((x, y, yaw)) is old
         zeros = (np.zeros(a.verts.shape[0]), np.zeros(a.circles.shape[0]))
-        geometry = (a.body, a.verts, a.counts, a.aabbs, a.circles, a.bounds)
+        geometry = a.pose_scene
         assert pose_is_valid(x, y, yaw, *geometry) == old
         assert pose_is_valid(x, y, yaw, *geometry, *zeros) == old
         invalid += not old
@@ -72,7 +72,7 @@ def test_zero_slack_propagates_as_before():
     scene = build_feeder(TABLE3)
     a = GeometricLevel(scene).arrays
     zeros = (np.zeros(a.verts.shape[0]), np.zeros(a.circles.shape[0]))
-    geometry = (a.body, a.verts, a.counts, a.aabbs, a.circles, a.bounds)
+    geometry = a.pose_scene
     start = scene.start("heavy_leading")
     rng = np.random.default_rng(5)
     blocked = 0
@@ -103,8 +103,8 @@ def _disc_depth(part: Polygon, disc: np.ndarray) -> float:
 def _reference_excess(level: GeometricLevel, pose, slack: np.ndarray) -> float:
     """max over obstacles of (shapely's depth - the obstacle's slack): valid when <= 0."""
     a = level.arrays
-    world = np.empty_like(a.body)
-    pose_vertices(a.body, *pose, world)
+    world = np.empty_like(a.part.body[0])
+    pose_vertices(a.part.body[0], *pose, world)
     part = Polygon(world)
     excess = [
         _depth(part, np.unique(a.verts[p, : a.counts[p]], axis=0)) - slack[p]
@@ -122,7 +122,9 @@ def _shallow_poses(level: GeometricLevel, count: int, deepest: float) -> list:
     a = level.arrays
     out = []
     for x, y, yaw in _random_poses(level.scene, 40_000, seed=11):
-        c = clearance_at_pose(a.body, x, y, yaw, a.verts, a.counts, a.aabbs, a.circles, -np.inf)
+        c = clearance_at_pose(
+            a.part.body[0], x, y, yaw, a.verts, a.counts, a.aabbs, a.circles, -np.inf
+        )
         if -deepest < c < 0.0:
             out.append((x, y, yaw))
             if len(out) == count:

@@ -146,14 +146,14 @@ def shapely_reference(
 def _kernel(arrays: SceneArrays, poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``(clearance, penetrates)`` per pose from the kernel under test."""
     a = arrays
-    world = np.empty_like(a.body)
+    world = np.empty_like(a.part.body[0])
     clearance = np.empty(len(poses))
     pen = np.empty(len(poses), dtype=bool)
     for k, (x, y, yaw) in enumerate(poses):
         clearance[k] = clearance_at_pose(
-            a.body, x, y, yaw, a.verts, a.counts, a.aabbs, a.circles, -np.inf
+            a.part.body[0], x, y, yaw, a.verts, a.counts, a.aabbs, a.circles, -np.inf
         )
-        pose_vertices(a.body, x, y, yaw, world)
+        pose_vertices(a.part.body[0], x, y, yaw, world)
         pen[k] = penetrates(world, a.verts, a.counts, a.aabbs, a.circles)
     return clearance, pen
 
@@ -239,7 +239,9 @@ FLOOR = np.array([[-10.0, -5.0], [10.0, -5.0], [10.0, 0.0], [-10.0, 0.0]])  # to
 def _clearance(polygons: list[np.ndarray], circles: np.ndarray, pose: tuple) -> float:
     arrays = SceneArrays.from_scene(free_scene("case", polygons, circles))
     a = arrays
-    return float(clearance_at_pose(a.body, *pose, a.verts, a.counts, a.aabbs, a.circles, -np.inf))
+    return float(
+        clearance_at_pose(a.part.body[0], *pose, a.verts, a.counts, a.aabbs, a.circles, -np.inf)
+    )
 
 
 def _shapely_overlaps(polygons: list[np.ndarray], circles: np.ndarray, pose: tuple) -> bool:
@@ -341,9 +343,9 @@ def test_touching_exactly_is_not_penetrating(
     Shapely agrees it is contact: distance 0 and zero intersection area."""
     scene = free_scene("touch", polygons, circles)
     a = SceneArrays.from_scene(scene)
-    world = np.empty_like(a.body)
-    pose_vertices(a.body, *pose, world)
-    d = clearance_at_pose(a.body, *pose, a.verts, a.counts, a.aabbs, a.circles, -np.inf)
+    world = np.empty_like(a.part.body[0])
+    pose_vertices(a.part.body[0], *pose, world)
+    d = clearance_at_pose(a.part.body[0], *pose, a.verts, a.counts, a.aabbs, a.circles, -np.inf)
     ref_pen, ref_dist = shapely_reference(polygons, circles, np.array([pose]))
     assert ref_dist[0] == 0.0 and not ref_pen[0], "the reference says this is not contact"
     assert d == 0.0
@@ -411,8 +413,8 @@ def test_penetrates_sees_obstacle_after_a_touching_one() -> None:
     assert _shapely_overlaps(TOUCHED_THEN_HIT, NO_DISCS, pose)
     scene = free_scene("touch+hit", TOUCHED_THEN_HIT, NO_DISCS)
     a = SceneArrays.from_scene(scene)
-    world = np.empty_like(a.body)
-    pose_vertices(a.body, *pose, world)
+    world = np.empty_like(a.part.body[0])
+    pose_vertices(a.part.body[0], *pose, world)
     assert penetrates(world, a.verts, a.counts, a.aabbs, a.circles)
     assert not GeometricLevel(scene).is_valid(pose)
 
