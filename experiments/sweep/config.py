@@ -4,9 +4,14 @@ Read from YAML with ``yaml.safe_load`` and validated field by field; an error na
 and its allowed range. Example (``experiments/configs/default.yaml``)::
 
     name: default
+    family: fig1                          # optional: a device family (issue 24), packaged by
+                                          # name or a file relative to this one; absent: the
+                                          # paper's 12-parameter feeder
     designs: {count: 24, seed: 1}        # the first `count` points of the scrambled Halton
-                                          # sequence over Table 2's box, seeded by `seed`
-    feeder:                               # what every design's scene shares (all optional)
+                                          # sequence over Table 2's box (a family's: its
+                                          # parameters' box), seeded by `seed`
+    feeder:                               # what every design's scene shares (all optional;
+                                          # a family's file holds its own, so not with one)
       friction: 0.3
       restitution: 0.3
       inputs: {max_speed: 1, max_turn: 1, max_force: 10, max_torque: 2}
@@ -37,6 +42,10 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
     workers: 2                            # processes (local executor)
     max_attempts: 2                       # worker deaths before a design is quarantined
 
+A family config may not have the ``necessary`` rung (its tests are the 12-parameter feeder's)
+and its family must have two entries (the results' two entry columns hold them, in the file's
+order).
+
 Everything is plain data, so a config travels to worker processes and Dask workers as is.
 """
 
@@ -46,10 +55,18 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from experiments.config_files import resolve_config
 from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE, PLANNER_NAMES, RUNG_NAMES, SCREEN
+from experiments.sweep.family import (
+    column_problem,
+    family_file,
+    family_of_text,
+    packaged_families,
+    text_digest,
+)
+from feeders.device_family import FamilyError
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -62,7 +79,11 @@ from feeders.fields import (
 )
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
+
 MAX_DESIGNS = 1_000_000
+_FAMILY_RUNGS = tuple(r for r in RUNG_NAMES if r != NECESSARY)
 
 
 class ConfigError(FieldError):
@@ -133,12 +154,21 @@ class SweepConfig:
     audit_seed: int = 0
     workers: int = 2
     max_attempts: int = 2
+    family: str | None = None  # the family file's absolute path; None: the 12-parameter feeder
+    family_yaml: str = ""  # the family file's text, as read when the config was
+
+    def device_family(self) -> DeviceFamily | None:
+        """The config's device family (None: the 12-parameter feeder), read from its text."""
+        if self.family is None:
+            return None
+        return family_of_text(self.family_yaml, Path(self.family).stem)
 
     def to_dict(self) -> dict[str, Any]:
         """The config as the YAML document it came from (normalised; plain data)."""
         ladder = [r.to_dict() for r in self.ladder]
         return {
             "name": self.name,
+            **({"family": self.family} if self.family is not None else {}),
             "designs": {"count": self.count, "seed": self.seed},
             "feeder": dict(self.feeder),
             "planner": dict(self.planner),
@@ -159,6 +189,8 @@ class SweepConfig:
         data = self.to_dict()
         data.pop("workers")
         data.pop("name")
+        if "family" in data:  # what the family says, not where its file lies
+            data["family"] = text_digest(self.family_yaml)
         for rung in data["ladder"]:  # the default is left out: such a config keeps the key
             if rung.get("prunes") is False:  # it had before ``prunes`` existed
                 del rung["prunes"]
@@ -287,18 +319,53 @@ def _rung(spec: Any, field_name: str) -> Rung:
     return Rung(level, tuple(planners), runs, time_s, propagations, prunes=prunes)
 
 
-def config_from_dict(data: Any, name: str = "sweep") -> SweepConfig:
-    """Validate a parsed YAML document; raises :class:`ConfigError` naming the field."""
+def config_from_dict(data: Any, name: str = "sweep", base: str | Path = ".") -> SweepConfig:
+    """Validate a parsed YAML document; raises :class:`ConfigError` naming the field. A
+    ``family`` file is found relative to ``base`` (the config file's folder)."""
     with field_errors_as(ConfigError):
-        return _config_from_dict(data, name)
+        return _config_from_dict(data, name, Path(base))
 
 
-def _config_from_dict(data: Any, name: str) -> SweepConfig:
+def _family_field(value: Any, base: Path) -> tuple[str, str]:
+    """The ``family`` field: the family file's absolute path and text, the family checked
+    (it reads, its parameters can name results columns, it has two entries)."""
+    if not isinstance(value, str) or not value:
+        raise ConfigError(
+            f"family = {shown(repr(value))}; allowed: a packaged family's name "
+            f"({', '.join(packaged_families())}) or a family file"
+        )
+    path = family_file(value, base)
+    if path is None:
+        raise ConfigError(
+            f"family = '{shown(value)}' is neither a file (relative to {shown(base)}) nor a "
+            f"packaged family; packaged families: {', '.join(packaged_families())}"
+        )
+    try:
+        text = path.read_text(encoding="utf-8")
+        family = family_of_text(text, path.stem)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"family: {shown(path)} cannot be read ({exc})") from None
+    except FamilyError as exc:
+        raise ConfigError(f"family: {shown(path)}: {exc}") from None
+    problem = column_problem(family)
+    if problem:
+        raise ConfigError(f"family: {shown(path)}: {problem}")
+    entries = [n for n, _ in family.entries]
+    if len(entries) != 2:
+        raise ConfigError(
+            f"family: {shown(path)} has {len(entries)} entries {entries}; a sweep needs 2 "
+            "(the verdict's two entry columns)"
+        )
+    return str(path), text
+
+
+def _config_from_dict(data: Any, name: str, base: Path) -> SweepConfig:
     data = mapping_field(
         data,
         "config",
         {
             "name",
+            "family",
             "designs",
             "feeder",
             "planner",
@@ -309,12 +376,20 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
             "max_attempts",
         },
     )
+    family, family_yaml = None, ""
+    if "family" in data:
+        family, family_yaml = _family_field(data["family"], base)
     designs = mapping_field(data.get("designs"), "designs", {"count", "seed"})
     if "count" not in designs:
         raise ConfigError("designs.count is required (number of Halton designs)")
     count = integer_field(designs["count"], "designs.count", 1, MAX_DESIGNS)
     seed = integer_field(designs.get("seed", 1), "designs.seed", 0, 2**31 - 1)
     feeder = mapping_field(data.get("feeder", {}) or {}, "feeder", set(ENVIRONMENT_KEYS))
+    if family is not None and feeder:
+        raise ConfigError(
+            f"feeder: {sorted(feeder)} given with family; allowed: none (the family's file "
+            "holds its part, friction, restitution, gravity and inputs)"
+        )
     environment_from_dict(feeder, prefix="feeder.")  # validate now, not in a worker
     planner = mapping_field(
         data.get("planner", {}) or {}, "planner", {"step", "min_steps", "max_steps"}
@@ -331,6 +406,11 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
         raise ConfigError("ladder: expected a non-empty list of levels to climb")
     ladder = tuple(_rung(spec, f"ladder[{i}]") for i, spec in enumerate(ladder_spec))
     levels = [r.level for r in ladder]
+    if family is not None and NECESSARY in levels:
+        raise ConfigError(
+            f"ladder[{levels.index(NECESSARY)}].level = {NECESSARY}: the necessary conditions "
+            f"are the 12-parameter feeder's; allowed with family: {', '.join(_FAMILY_RUNGS)}"
+        )
     if len(set(levels)) != len(levels):
         raise ConfigError(f"ladder: {levels} has a level twice")
     order = [LEVEL_NAMES.index(level) for level in levels if level in LEVEL_NAMES]
@@ -360,6 +440,8 @@ def _config_from_dict(data: Any, name: str) -> SweepConfig:
         audit_seed=audit_seed,
         workers=workers,
         max_attempts=attempts,
+        family=family,
+        family_yaml=family_yaml,
     )
 
 
@@ -368,6 +450,6 @@ def load_config(path: str | Path) -> SweepConfig:
     path = resolve_config(path)
     data = read_yaml(path, "config", ConfigError)
     try:
-        return config_from_dict(data, name=path.stem)
+        return config_from_dict(data, name=path.stem, base=path.parent)
     except ConfigError as exc:
         raise ConfigError(f"{shown(path)}: {exc}") from None

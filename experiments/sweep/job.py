@@ -4,18 +4,26 @@ A job is a :class:`SweepJob`, a dict of declared shape that pickles (worker proc
 workers build their own OMPL objects from it); :func:`sweep_job` makes it from the config, the
 only place its keys are filled, and :func:`job_from_dict` checks one that arrived from
 elsewhere. The result is a dict for :func:`experiments.sweep.results_db.record`.
+
+A job of a device family's sweep (issue 24) carries the family file's text and name: each
+worker reads the family from it (a few ms, no cache) and builds the design's scene with
+:meth:`feeders.device_family.DeviceFamily.build`; the entries are the family's, in its file's
+order, where the feeder's are ``heavy_leading`` and ``heavy_trailing``.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import socket
 import time
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
 from experiments.names import DROP_RUNGS, NECESSARY, PASSIVE, SCREEN
+from experiments.sweep.family import family_of_text
 from experiments.sweep.results_db import SAMPLED_LEVELS
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
@@ -23,6 +31,7 @@ from feeders.scene_yaml import environment_from_dict
 
 if TYPE_CHECKING:
     from experiments.sweep.config import SweepConfig
+    from feeders.device_family import DeviceFamily
     from feeders.scene import Scene
 
 
@@ -30,7 +39,7 @@ class SweepJob(TypedDict):
     """One design at one rung of the ladder, as a worker receives it."""
 
     design_id: int
-    values: list[float]  # the 12 parameters, order of PARAMETER_NAMES
+    values: list[float]  # the 12 parameters, order of PARAMETER_NAMES (a family's: its order)
     rung: int  # index in the ladder
     level: str
     planners: list[str]
@@ -44,6 +53,7 @@ class SweepJob(TypedDict):
     verdict: dict[str, Any]  # the passive rung's VerdictSettings fields, the screen's
     # ScreenSettings fields ({} for a level)
     perturbations: dict[str, float]  # the drop rungs' Perturbations fields ({} for a level)
+    family: dict[str, str] | None  # {"name", "yaml"}: the device family; None: the feeder
 
 
 def sweep_job(config: SweepConfig, design_id: int, values: list[float], rung: int) -> SweepJob:
@@ -64,7 +74,26 @@ def sweep_job(config: SweepConfig, design_id: int, values: list[float], rung: in
         name=config.name,
         verdict=dict(r.verdict),
         perturbations=dict(r.perturbations),
+        family=(
+            None
+            if config.family is None
+            else {"name": Path(config.family).stem, "yaml": config.family_yaml}
+        ),
     )
+
+
+def job_family(job: SweepJob) -> DeviceFamily | None:
+    """The job's device family, read from the text it carries (None: the 12-parameter
+    feeder)."""
+    if job["family"] is None:
+        return None
+    return family_of_text(job["family"]["yaml"], job["family"]["name"])
+
+
+def entries_of(family: DeviceFamily | None) -> tuple[str, ...]:
+    """The entry orientations a design is judged from: the family's, in its file's order, or
+    the feeder's :data:`feeders.feeder.ORIENTATIONS`."""
+    return ORIENTATIONS if family is None else tuple(name for name, _ in family.entries)
 
 
 def job_from_dict(data: dict[str, Any]) -> SweepJob:
@@ -158,14 +187,18 @@ def evaluate_necessary(job: SweepJob) -> dict[str, Any]:
 
 
 def _scene_or_degenerate(job: SweepJob, result: dict[str, Any], t0: float) -> Scene | None:
-    """The job's feeder (its 12 values, the sweep's part and feeder options); None with
+    """The job's feeder (its 12 values, the sweep's part and feeder options), or its
+    family's device (:meth:`feeders.device_family.DeviceFamily.build`); None with
     ``result`` made "degenerate", with the reason and the time since ``t0``, when the design
     cannot be built."""
+    values = [float(v) for v in job["values"]]
+    name = f"design {int(job['design_id'])}"
+    family = job_family(job)
     try:
+        if family is not None:
+            return dataclasses.replace(family.build(values), name=name)
         return build_feeder(
-            DesignParameters.from_vector([float(v) for v in job["values"]]),
-            name=f"design {int(job['design_id'])}",
-            **environment_from_dict(job["feeder"]),
+            DesignParameters.from_vector(values), name=name, **environment_from_dict(job["feeder"])
         )
     except DegenerateDesign as exc:
         result["status"] = "degenerate"
@@ -174,13 +207,13 @@ def _scene_or_degenerate(job: SweepJob, result: dict[str, Any], t0: float) -> Sc
         return None
 
 
-def _new_result(job: SweepJob) -> dict[str, Any]:
+def _new_result(job: SweepJob, entries: tuple[str, ...] = ORIENTATIONS) -> dict[str, Any]:
     return {
         "design_id": int(job["design_id"]),
         "level": str(job["level"]),
         "status": "infeasible",
         "reason": None,
-        "orientations": dict.fromkeys(ORIENTATIONS),
+        "orientations": dict.fromkeys(entries),
         "runs": [],
         "logs": {},
         "worker": f"{socket.gethostname()}:{os.getpid()}",
@@ -193,12 +226,17 @@ def evaluate_passive(job: SweepJob) -> dict[str, Any]:
     perturbations, seeded by :func:`verdict_seed`, for the sweep's part and feeder. The
     design passes the rung ("feasible") when it works: the Wilson lower bound of every entry
     clears the target; an entry's flag says whether its own bound does. The verdict
-    (``Verdict.to_dict()``) and its seed travel in the result."""
+    (``Verdict.to_dict()``) and its seed travel in the result. A family's design: its
+    :func:`experiments.drop.family_verdict.family_verdict` from the family's entries, with
+    the family's part and friction."""
+    from experiments.drop.family_verdict import family_verdict
     from experiments.drop.perturbations import Perturbations
     from experiments.drop.verdict import VerdictSettings, design_verdict
 
     t0 = time.perf_counter()
-    result = _new_result(job)
+    family = job_family(job)
+    entries = entries_of(family)
+    result = _new_result(job, entries)
     values = [float(v) for v in job["values"]]
     environment = environment_from_dict(job["feeder"])
     settings = VerdictSettings(
@@ -206,14 +244,17 @@ def evaluate_passive(job: SweepJob) -> dict[str, Any]:
     )
     seed = verdict_seed(int(job["seed"]), int(job["design_id"]))
     try:
-        verdict = design_verdict(
-            DesignParameters.from_vector(values),
-            part=environment.pop("part"),
-            friction=environment.pop("friction"),
-            settings=settings,
-            seed=seed,
-            **environment,
-        )
+        if family is not None:
+            verdict = family_verdict(family, values, settings, seed)
+        else:
+            verdict = design_verdict(
+                DesignParameters.from_vector(values),
+                part=environment.pop("part"),
+                friction=environment.pop("friction"),
+                settings=settings,
+                seed=seed,
+                **environment,
+            )
     except DegenerateDesign as exc:
         result["status"] = "degenerate"
         result["reason"] = exc.reason
@@ -222,7 +263,7 @@ def evaluate_passive(job: SweepJob) -> dict[str, Any]:
     result["status"] = "feasible" if verdict.works else "infeasible"
     if verdict.decision == "undecided":
         result["reason"] = f"undecided after {verdict.drops} trials"
-    for orientation in ORIENTATIONS:
+    for orientation in entries:
         result["orientations"][orientation] = verdict.interval(orientation)[0] > settings.target
     result["verdict"] = verdict.to_dict()
     result["verdict_seed"] = seed
@@ -236,24 +277,33 @@ def evaluate_screen(job: SweepJob) -> dict[str, Any]:
     perturbations, seeded by :func:`screen_seed`: "infeasible" when the screen fails it (a
     statistical prune with the stated error ``false_fails``), "feasible" when it passes,
     ``unknown`` when it is undecided (the design goes on to the verdict either way). The
-    screen (``Screen.to_dict()``) travels in the result."""
+    screen (``Screen.to_dict()``) travels in the result. A family's design: its
+    :func:`experiments.drop.family_verdict.family_screen`, with the same seed."""
+    from experiments.drop.family_verdict import family_screen
     from experiments.drop.perturbations import Perturbations
     from experiments.drop.screen import PASSES, design_screen
     from experiments.drop.screen_settings import ScreenSettings
 
     t0 = time.perf_counter()
-    result = _new_result(job)
+    family = job_family(job)
+    entries = entries_of(family)
+    result = _new_result(job, entries)
     environment = environment_from_dict(job["feeder"])
     settings = ScreenSettings(**job["verdict"], perturbations=Perturbations(**job["perturbations"]))
+    values = [float(v) for v in job["values"]]
+    seed = screen_seed(int(job["seed"]), int(job["design_id"]))
     try:
-        screen = design_screen(
-            DesignParameters.from_vector([float(v) for v in job["values"]]),
-            part=environment.pop("part"),
-            friction=environment.pop("friction"),
-            settings=settings,
-            seed=screen_seed(int(job["seed"]), int(job["design_id"])),
-            **environment,
-        )
+        if family is not None:
+            screen = family_screen(family, values, settings, seed)
+        else:
+            screen = design_screen(
+                DesignParameters.from_vector(values),
+                part=environment.pop("part"),
+                friction=environment.pop("friction"),
+                settings=settings,
+                seed=seed,
+                **environment,
+            )
     except DegenerateDesign as exc:
         result["status"] = "degenerate"
         result["reason"] = exc.reason
@@ -270,7 +320,7 @@ def evaluate_screen(job: SweepJob) -> dict[str, Any]:
         )
     elif screen.decision != PASSES:
         result["reason"] = f"screen undecided after {screen.total_drops} drops"
-    for orientation in ORIENTATIONS:
+    for orientation in entries:
         result["orientations"][orientation] = statuses.get(orientation) == "works"
     result["screen"] = screen.to_dict()
     result["wall_time_s"] = time.perf_counter() - t0
@@ -287,6 +337,13 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
     proved nothing, issue 21), and the other entry is skipped (the design cannot be shown
     feasible any more). A design that cannot be built is ``degenerate``, with the reason.
 
+    A family's design is planned from each of the family's entries to its goal on
+    :meth:`~feeders.device_family.DeviceFamily.build`'s scene. Its geometric level is not
+    the feeder's relaxation: the slack and the entry region come from the feeder made to
+    tolerance (:mod:`validity.made_envelope`), which a family has no counterpart of, so it
+    plans with slack 0 from the entry poses only (a stricter geometric level: it may leave
+    ``unknown`` a design the relaxation would solve).
+
     Returns a dict for :func:`experiments.sweep.results_db.record`.
     """
     from ompl import util as ou
@@ -297,19 +354,22 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
     ou.setLogLevel(ou.LogLevel.LOG_NONE)
     t0 = time.perf_counter()
     design_id, level = int(job["design_id"]), str(job["level"])
-    result = _new_result(job)
+    family = job_family(job)
+    entries = entries_of(family)
+    result = _new_result(job, entries)
     values = [float(v) for v in job["values"]]
     scene = _scene_or_degenerate(job, result, t0)
     if scene is None:
         return result
     budget = Budget(float(job["time_s"]), job["propagations"])
     seed = run_seed(int(job["seed"]), design_id, int(job["rung"]))
-    parameters: dict[str, float | int | str] = dict(zip(PARAMETER_NAMES, values, strict=True))
+    names = PARAMETER_NAMES if family is None else family.vector_names
+    parameters: dict[str, float | int | str] = dict(zip(names, values, strict=True))
     parameters.update(design_id=design_id, level=level, seed=seed)
     level_options: dict[str, Any] = {}
     region = None
-    if level == "geometric":  # a relaxation: contact, the made walls' tolerance and the
-        # entry region granted (the verdict's perturbations)
+    if level == "geometric" and family is None:  # a relaxation: contact, the made walls'
+        # tolerance and the entry region granted (the verdict's perturbations)
         from experiments.drop.perturbations import Perturbations
         from validity.geometric_slack import relaxation_slack
 
@@ -317,7 +377,7 @@ def evaluate_planning(job: SweepJob) -> dict[str, Any]:
         level_options["slack"] = relaxation_slack(scene, noise.tolerance).total
         region = (noise.position, noise.yaw)
     feasible = True
-    for orientation in ORIENTATIONS:
+    for orientation in entries:
         bench = benchmark_problem(
             scene,
             level,

@@ -41,7 +41,9 @@ from experiments.executors.local import LocalPool
 from experiments.names import PASSIVE
 from experiments.sweep import results_db
 from experiments.sweep.config import Rung, SweepConfig
+from experiments.sweep.family import family_record
 from experiments.sweep.job import SweepJob, evaluate_design, sweep_job, warm_up
+from feeders.design import DESIGN_SPACE, PARAMETER_NAMES
 from feeders.halton import halton_points
 
 RESULTS_FILE = "results.sqlite"
@@ -129,15 +131,23 @@ def run_sweep(
     holdout, or quarantined), so every design finishes exactly once and ``designs`` is a total known
     from the start, though the number of evaluations is not (the ladder is adaptive).
     ``evaluate`` runs in the workers (a function of a module they can import; tests replace
-    it to make workers crash). A sweep with nothing left to run starts no worker.
+    it to make workers crash). A sweep with nothing left to run starts no worker. A config
+    with a device family draws its designs from the family's box
+    (:meth:`feeders.device_family.DeviceFamily.space`) and ties the database to the family.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     path = out / RESULTS_FILE
-    db = results_db.connect(path)
+    family = config.device_family()
+    if family is None:
+        record, space, parameters = None, DESIGN_SPACE, PARAMETER_NAMES
+    else:
+        record = family_record(family, config.family_yaml)
+        space, parameters = family.space(), family.vector_names
+    db = results_db.connect(path, parameters=parameters)
     try:
-        results_db.claim(db, config.to_dict(), config.results_key())
-        points = halton_points(config.count, config.seed)
+        results_db.claim(db, config.to_dict(), config.results_key(), record)
+        points = halton_points(config.count, config.seed, space)
         holdout = holdout_ids(config.count, config.holdout_fraction, config.holdout_seed)
         designs = {i: [float(v) for v in points[i]] for i in range(config.count)}
         results_db.add_designs(db, ((i, i in holdout, v) for i, v in designs.items()))

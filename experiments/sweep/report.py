@@ -18,13 +18,14 @@ from __future__ import annotations
 import os
 from contextlib import closing
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from experiments.report_kit.comparison_section import OVERLAY_PREFIX, comparison_figures
 from experiments.report_kit.margins_section import MARGINS, margins_figures
 from experiments.report_kit.verdict_section import STRIP_PREFIX
+from experiments.sweep.family import family_of_text
 from experiments.sweep.report_figures import (
     best_figure,
     feasible_set_figure,
@@ -39,8 +40,10 @@ from experiments.sweep.report_recommendation import (
     recommendation_of,
 )
 from experiments.sweep.report_verdicts import TRANSITIONS, comparison_of, verdict_figures
-from experiments.sweep.results_db import connect
-from feeders.design import PARAMETER_NAMES
+from experiments.sweep.results_db import connect, parameter_names, stored_family
+
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
 
 FIGURES = ("survivors", "feasible_set", "planners", "pruning", "best_designs")
 # what a report finds beyond the sweep's summary, for the summary a job prints
@@ -99,6 +102,7 @@ def report_with_findings(
     figures_dir.mkdir(parents=True, exist_ok=True)
     ladder = [str(level) for level in summary.get("ladder") or []]
     data = _read_db(db_path)
+    family = _family(db_path)
 
     figures: dict[str, Path] = {}
     figures["survivors"] = survivors_figure(summary, figures_dir / "survivors.png")
@@ -109,8 +113,10 @@ def report_with_findings(
     figures["pruning"] = pruning_figure(summary, ladder, figures_dir / "pruning.png")
     best = list(summary.get("best") or [])
     if best:
-        figures["best_designs"] = best_figure(summary, best, figures_dir / "best_designs.png")
-    figures.update(verdict_figures(summary, figures_dir))
+        figures["best_designs"] = best_figure(
+            summary, best, figures_dir / "best_designs.png", family
+        )
+    figures.update(verdict_figures(summary, figures_dir, family))
     comparison: dict[str, Any] | None = None
     if summary.get("passive"):
         comparison = comparison_of(summary, Path(db_path), baseline=baseline)
@@ -156,15 +162,25 @@ def _environment(summary: dict) -> dict[str, Any]:
     return dict(environment_from_dict(summary.get("feeder") or {}, prefix="feeder."))
 
 
+def _family(db_path: str | Path) -> DeviceFamily | None:
+    """The device family the sweep at ``db_path`` designs, rebuilt from the text its
+    database keeps (None: the 12-parameter feeder)."""
+    with closing(connect(db_path, readonly=True)) as db:
+        record = stored_family(db)
+    return None if record is None else family_of_text(record["yaml"], record["name"])
+
+
 def _read_db(db_path: str | Path) -> dict[str, Any]:
     """What the figures need from the database: design values, verdicts and planner runs.
 
-    Returns ``ids`` (design ids, ascending), ``values`` (array (n, 12), order of
-    ``PARAMETER_NAMES``), ``status`` ((design_id, level) -> status) and ``runs`` (rows with
-    level, planner, time_s, tree_size). Read-only, so a running sweep is not disturbed.
+    Returns ``ids`` (design ids, ascending), ``parameters`` (the design columns: the 12
+    ``PARAMETER_NAMES``, or a family's), ``values`` (array (n, parameters), in their order),
+    ``status`` ((design_id, level) -> status) and ``runs`` (rows with level, planner,
+    time_s, tree_size). Read-only, so a running sweep is not disturbed.
     """
-    columns = ", ".join(PARAMETER_NAMES)
     with closing(connect(db_path, readonly=True)) as db:
+        parameters = parameter_names(db)
+        columns = ", ".join(f'"{name}"' for name in parameters)
         designs = db.execute(
             f"SELECT design_id, {columns} FROM designs ORDER BY design_id"
         ).fetchall()
@@ -180,10 +196,11 @@ def _read_db(db_path: str | Path) -> dict[str, Any]:
             )
         ]
     values = np.array(
-        [[float(r[name]) for name in PARAMETER_NAMES] for r in designs], dtype=float
-    ).reshape(-1, len(PARAMETER_NAMES))
+        [[float(r[name]) for name in parameters] for r in designs], dtype=float
+    ).reshape(-1, len(parameters))
     return {
         "ids": [int(r["design_id"]) for r in designs],
+        "parameters": list(parameters),
         "values": values,
         "status": status,
         "runs": runs,

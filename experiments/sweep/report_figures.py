@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib
 
@@ -25,6 +26,9 @@ from experiments.report_kit.figures import empty_plot
 from feeders.design import PARAMETER_NAMES, TABLE2_BOUNDS, DesignError, DesignParameters
 from feeders.feeder import DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
+
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
 
 MAX_BEST_DRAWN = 6
 NONE_COLOUR = "#c7c7c7"
@@ -101,19 +105,25 @@ def feasible_set_figure(summary: dict, ladder: list[str], data: dict, path: Path
 def feasible_set_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
     """Which designs pass, and where they lie in Table 2's box: parallel coordinates of the
     12 parameters (each axis Table 2's range of one parameter, bottom to top), one line per
-    design. Designs that fail the first rung are thin grey lines behind; the others are thick
+    design (a device family's sweep: its parameters, ``data["parameters"]``, and box).
+    Designs that fail the first rung are thin grey lines behind; the others are thick
     lines with markers, coloured by the highest rung they passed with every rung below it (the
     paper's Z_F is the top one), so a few that pass among many that fail stand out."""
     values = np.asarray(data["values"], dtype=float)
     passed = np.array([highest_passed(i, ladder, data["status"]) for i in data["ids"]])
     classes = ["fails the first rung", *ladder]
     colours = [NONE_COLOUR] + [_level_colour(k, level) for k, level in enumerate(ladder)]
-    low = np.array([TABLE2_BOUNDS[n][0] for n in PARAMETER_NAMES])
-    high = np.array([TABLE2_BOUNDS[n][1] for n in PARAMETER_NAMES])
+    family = summary.get("family")
+    names = list(data.get("parameters") or PARAMETER_NAMES)
+    if family:
+        low, high = np.array(family["low"], dtype=float), np.array(family["high"], dtype=float)
+    else:
+        low = np.array([TABLE2_BOUNDS[n][0] for n in PARAMETER_NAMES])
+        high = np.array([TABLE2_BOUNDS[n][1] for n in PARAMETER_NAMES])
     unit = (values - low) / (high - low)
-    x = np.arange(len(PARAMETER_NAMES))
-    fig, ax = plt.subplots(figsize=(10.0, 5.4))
-    for k in range(len(PARAMETER_NAMES)):
+    x = np.arange(len(names))
+    fig, ax = plt.subplots(figsize=(max(6.0, 10.0 * len(names) / 12), 5.4))
+    for k in range(len(names)):
         ax.plot([k, k], [0.0, 1.0], color="#888888", lw=0.8, zorder=1)
         for y, bound, va in ((-0.05, low[k], "top"), (1.05, high[k], "bottom")):
             ax.text(k, y, f"{bound:g}", ha="center", va=va, fontsize=9, color="#333333")
@@ -124,16 +134,20 @@ def feasible_set_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
                 ax.plot(x, unit[row], color=colours[k], lw=0.8, alpha=0.7, zorder=2)
             else:
                 ax.plot(x, unit[row], color=colours[k], lw=2.4, marker="o", ms=6, zorder=3 + k)
-    ax.set_xticks(x, PARAMETER_NAMES, fontsize=10)
-    ax.set_xlim(-0.4, len(PARAMETER_NAMES) - 0.6)
+    ax.set_xticks(x, names, fontsize=10)
+    ax.set_xlim(-0.4, len(names) - 0.6)
     ax.set_ylim(-0.14, 1.14)
     ax.set_yticks([0.0, 0.5, 1.0], ["low", "middle", "high"], fontsize=9)
-    ax.set_ylabel("value within Table 2's range")
-    ax.set_xlabel(
-        "design parameter (a-gy, r: lengths in the paper's units, the peg is 2 x 1; "
-        "theta, alpha: rad)",
-        fontsize=9,
-    )
+    if family:
+        ax.set_ylabel(f"value within the range of family {family['name']}")
+        ax.set_xlabel("design parameter (the family file's units)", fontsize=9)
+    else:
+        ax.set_ylabel("value within Table 2's range")
+        ax.set_xlabel(
+            "design parameter (a-gy, r: lengths in the paper's units, the peg is 2 x 1; "
+            "theta, alpha: rad)",
+            fontsize=9,
+        )
     for side in ("top", "right", "left"):
         ax.spines[side].set_visible(False)
     handles = [
@@ -333,9 +347,12 @@ def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
     return fig
 
 
-def best_figure(summary: dict, best: list[dict], path: Path) -> Path:
+def best_figure(
+    summary: dict, best: list[dict], path: Path, family: DeviceFamily | None = None
+) -> Path:
     """Drawings of the best designs (at most ``MAX_BEST_DRAWN``), each titled with its id and
-    exit time; a design whose scene cannot be built says why in its panel."""
+    exit time; a design whose scene cannot be built says why in its panel. A device
+    family's sweep gives its ``family``, whose devices are drawn."""
     shown = best[:MAX_BEST_DRAWN]
     environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
     cols = min(len(shown), 3)
@@ -349,9 +366,12 @@ def best_figure(summary: dict, best: list[dict], path: Path) -> Path:
             DASH if exit_time is None else f"{exit_time:.2f} s"
         )
         try:
-            design = DesignParameters.from_vector(entry.get("values") or [])
-            scene = build_feeder(design, name=f"design {entry.get('design_id')}", **environment)
-        except (DegenerateDesign, DesignError) as exc:
+            if family is not None:
+                scene = family.build(list(entry.get("values") or []))
+            else:
+                design = DesignParameters.from_vector(entry.get("values") or [])
+                scene = build_feeder(design, name=f"design {entry.get('design_id')}", **environment)
+        except (DegenerateDesign, DesignError, ValueError) as exc:
             ax.text(
                 0.5, 0.5, f"cannot draw:\n{exc}", ha="center", va="center", fontsize=7, wrap=True
             )

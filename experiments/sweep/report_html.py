@@ -162,6 +162,16 @@ def _margins_parts(summary: dict, figures: dict[str, Path]) -> list[str]:
     return margins_html(summary["margins"], figures)
 
 
+def _designed(family: dict | None) -> str:
+    """What the sweep designs: the paper's feeder, or a device family with its entries."""
+    if not family:
+        return "the paper's 12-parameter feeder"
+    return (
+        f"device family {family['name']} ({', '.join(family['parameters'])}; entries "
+        f"{', '.join(family['entries'])})"
+    )
+
+
 def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_path: Path) -> str:
     """The page: summary numbers as tables, each section followed by its figure."""
     e = html.escape
@@ -179,7 +189,8 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
         "<p>"
         f"Results key <code>{e(str(summary.get('results_key', '')))}</code>; "
         f"{e(cell(summary.get('designs')))} Halton designs, "
-        f"{e(cell(summary.get('holdout')))} in the holdout; ladder: "
+        f"{e(cell(summary.get('holdout')))} in the holdout; "
+        f"{e(_designed(summary.get('family')))}; ladder: "
         f"{e(' → '.join(ladder) or DASH)}.<br>"
         f"Database <code>{e(db_path.name)}</code>; report written {e(time.ctime())}."
         "</p>",
@@ -297,11 +308,17 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
     parts.append(figure_html(figures, "planners", "planner comparison per level"))
 
     parts.append("<h2>Feasible set in design space</h2>")
+    family = summary.get("family")
+    through = (
+        f"its {len(family['parameters'])} parameters, each axis the range of one parameter "
+        f"in device family {e(str(family['name']))}"
+        if family
+        else "its 12 parameters, each axis Table 2's range of one parameter"
+    )
     parts.append(
-        '<p class="note">Every design of the database as a line through its 12 parameters, '
-        "each axis Table 2's range of one parameter. Grey: fails the first rung; coloured, "
-        "thick: passed that rung and every rung below it (the top one is the paper's Fig. 2 "
-        "Z<sub>F</sub>).</p>"
+        f'<p class="note">Every design of the database as a line through {through}. Grey: '
+        "fails the first rung; coloured, thick: passed that rung and every rung below it (the "
+        "top one is the paper's Fig. 2 Z<sub>F</sub>).</p>"
     )
     parts.append(
         figure_html(figures, "feasible_set", "feasible set: the designs in parallel coordinates")
@@ -325,7 +342,7 @@ def html_page(summary: dict, ladder: list[str], figures: dict[str, Path], db_pat
                     "95% CI",
                     "exit time (s)",
                     "fresh draws",
-                    *PARAMETER_NAMES,
+                    *(summary.get("parameters") or PARAMETER_NAMES),
                 ],
                 [
                     [

@@ -10,11 +10,12 @@ cannot be built, or a summary without a passive rung, gets a sentence, never an 
 
 from __future__ import annotations
 
+import dataclasses
 import html
 import json
 from contextlib import closing
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import matplotlib
 
@@ -36,6 +37,9 @@ from experiments.report_kit.verdict_section import (
 from experiments.sweep.report_figures import MAX_BEST_DRAWN
 from feeders.feeder import ORIENTATIONS
 
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
+
 TRANSITIONS = "transitions"
 COMPARED = 3  # the best designs judged again against the baseline on fresh draws
 BASELINE = "table3"
@@ -47,10 +51,20 @@ def with_verdicts(summary: dict) -> list[dict]:
     return [b for b in summary.get("best") or [] if "verdict" in b][:MAX_BEST_DRAWN]
 
 
-def verdict_figures(summary: dict, figures_dir: Path) -> dict[str, Path]:
+def entries_shown(summary: dict) -> tuple[str, ...]:
+    """The entry orientations of the sweep's designs: its device family's (the summary's
+    ``family``), else the feeder's."""
+    family = summary.get("family")
+    return tuple(family["entries"]) if family else ORIENTATIONS
+
+
+def verdict_figures(
+    summary: dict, figures_dir: Path, family: DeviceFamily | None = None
+) -> dict[str, Path]:
     """The strips of the best designs' nominal drops and, unless every drop ended the same
     way (then :func:`transitions_sentence` says it), the transition-matrix figure;
-    name -> PNG path (a design that cannot be built has no strip)."""
+    name -> PNG path (a design that cannot be built has no strip). A device family's sweep
+    gives its ``family``, whose devices are drawn."""
     best = with_verdicts(summary)
     out: dict[str, Path] = {}
     if not best:
@@ -60,7 +74,7 @@ def verdict_figures(summary: dict, figures_dir: Path) -> dict[str, Path]:
             transitions_plot(summary, best), figures_dir / f"{TRANSITIONS}.png"
         )
     for entry in best:
-        path = _strip(summary, entry, figures_dir / f"{strip_name(entry['design_id'])}.png")
+        path = _strip(summary, entry, figures_dir / f"{strip_name(entry['design_id'])}.png", family)
         if path is not None:
             out[strip_name(entry["design_id"])] = path
     return out
@@ -73,8 +87,8 @@ def transitions_sentence(best: list[dict]) -> str | None:
     drops = 0
     for entry in best:
         matrix = (entry.get("verdict") or {}).get("transitions") or {}
-        for orientation in ORIENTATIONS:
-            for outcome, n in (matrix.get(orientation) or {}).items():
+        for per_entry in matrix.values():
+            for outcome, n in (per_entry or {}).items():
                 if n > 0:
                     outcomes.add(outcome)
                     drops += n
@@ -88,21 +102,28 @@ def transitions_sentence(best: list[dict]) -> str | None:
     )
 
 
-def _strip(summary: dict, entry: dict, path: Path) -> Path | None:
-    """The design's nominal passive drops from both entries, drawn as Figs. 10-11."""
+def _strip(
+    summary: dict, entry: dict, path: Path, family: DeviceFamily | None = None
+) -> Path | None:
+    """The design's nominal passive drops from both entries, drawn as Figs. 10-11 (a
+    family's design: its device, from the family's entries)."""
     from experiments.drop.passive import passive_drop
     from experiments.drop.pictures import drop_strip
     from feeders.design import DesignError, DesignParameters
     from feeders.feeder import DegenerateDesign, build_feeder
     from feeders.scene_yaml import environment_from_dict
 
+    name = f"design {entry['design_id']}"
     try:
-        environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
-        design = DesignParameters.from_vector(list(entry.get("values") or []))
-        scene = build_feeder(design, name=f"design {entry['design_id']}", **environment)
+        if family is not None:
+            scene = dataclasses.replace(family.build(list(entry.get("values") or [])), name=name)
+        else:
+            environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
+            design = DesignParameters.from_vector(list(entry.get("values") or []))
+            scene = build_feeder(design, name=name, **environment)
     except (DegenerateDesign, DesignError, ValueError):
         return None
-    results = [passive_drop(scene, o) for o in ORIENTATIONS]
+    results = [passive_drop(scene, o) for o in entries_shown(summary)]
     figure = drop_strip(scene, results, path)
     plt.close("all")
     return figure
@@ -114,7 +135,7 @@ def transitions_plot(summary: dict, best: list[dict]) -> Figure:
     rows: list[tuple[str, dict[str, int]]] = []
     for entry in best:
         matrix = entry["verdict"].get("transitions") or {}
-        for orientation in ORIENTATIONS:
+        for orientation in entries_shown(summary):
             label = f"design {entry['design_id']}, {orientation.replace('_', ' ')}"
             rows.append((label, dict(matrix.get(orientation) or {})))
     fig, ax = plt.subplots(figsize=(9.5, 0.45 * len(rows) + 1.6))
@@ -335,7 +356,8 @@ def comparison_of(
     seed that is no design's verdict seed; the designs in the order of
     :func:`experiments.report_kit.comparison_section.fresh_ranking` (confirmed first), not
     the order they were selected in. ``{"absent": reason, "baseline": {"label": ...}}``
-    when there is nothing to compare."""
+    when there is nothing to compare, as for a device family's sweep (the comparison is the
+    12-parameter feeder's)."""
     from experiments.drop.compare import FRESH_DROPS, compare_designs, fresh_seed
     from experiments.report_kit.comparison_section import fresh_ranking
     from experiments.sweep.job import verdict_seed
@@ -343,6 +365,13 @@ def comparison_of(
     from feeders.scene_yaml import environment_from_dict
 
     name, base_values = baseline or default_baseline()
+    if summary.get("family"):
+        return {
+            "absent": "the sweep is of the device family "
+            f"'{summary['family']['name']}', and the comparison on fresh draws is the "
+            "12-parameter feeder's (not yet a family's)",
+            "baseline": {"label": name},
+        }
     best = with_verdicts(summary)[:COMPARED]
     if not best:
         return {"absent": "no design works, so none is recommended", "baseline": {"label": name}}

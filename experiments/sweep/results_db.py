@@ -4,15 +4,20 @@ Tables (one row per ...):
 
 - ``meta`` (key, value): ``config`` (the config as JSON), ``results_key`` (its digest: a
   database belongs to one config), ``created``.
+- ``meta`` of a device family's sweep (issue 24) also holds ``family``: the family as JSON
+  (:func:`experiments.sweep.family.family_record`: name, parameters, box, entries, the file's
+  text), so a report rebuilds its devices from the database alone.
 - ``designs``: a Halton design: ``design_id`` (index in the sequence), ``holdout`` (1 if it
-  climbs every rung to measure the pruning), the 12 parameters as columns (Table 2's names).
+  climbs every rung to measure the pruning), the 12 parameters as columns (Table 2's names;
+  a family's sweep: the family's parameter names, in its order).
 - ``evaluations``: a (design, level): ``rung`` (position in the ladder), ``status``
   (feasible / infeasible / unknown / degenerate: ``unknown`` is a planning level's "not found
   within budget", which proves nothing; a database written before it existed stored that as
   ``infeasible``, read as ``unknown`` by :func:`status_of`), ``reason`` (why degenerate,
-  unknown or undecided), ``heavy_leading`` and
-  ``heavy_trailing`` (1 solved, 0 not, NULL not run: the second entry is skipped once the
-  first fails), ``wall_time_s`` (the whole evaluation, in its worker), ``worker``, ``attempts``.
+  unknown or undecided), ``heavy_leading`` and ``heavy_trailing`` (1 solved, 0 not, NULL
+  not run: the second entry is skipped once the first fails; a family's sweep: its first
+  and second entry, named in ``meta``'s family), ``wall_time_s`` (the whole evaluation, in
+  its worker), ``worker``, ``attempts``.
 - ``runs``: one planner run of an evaluation: orientation, planner, run, seed, solved (goal
   reached exactly), approximate, time_s, tree_size, tree_edges, propagations,
   validity_checks, exit_time_s (the solution's duration, Eq. 10; NULL unless solved).
@@ -20,7 +25,8 @@ Tables (one row per ...):
 - ``quarantine``: a (design, level) whose worker died ``attempts`` times, and why.
 - ``verdicts``: a design's passive verdict (the ``passive`` rung): ``decision`` (works /
   fails / undecided), ``target``, ``trials``, successes per entry and of both, the mean exit
-  time of each entry's successful drops, the verdict's ``seed`` and the whole verdict as JSON
+  time of each entry's successful drops (a family's: its first and second entry), the
+  verdict's ``seed`` and the whole verdict as JSON
   (``experiments.drop.verdict.Verdict.to_dict``: intervals, transition matrix).
 
 Each evaluation is stored with its runs and logs in one transaction, keyed by (design, level):
@@ -32,13 +38,15 @@ from __future__ import annotations
 
 import json
 import sqlite3
+import stat
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
-from experiments.database_file import check_file, open_read_only, table_columns
-from feeders.design import PARAMETER_NAMES
+from experiments.database_file import check_file, header_problem, open_read_only, table_columns
+from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignSpace
+from feeders.feeder import ORIENTATIONS
 
 STATUSES = ("feasible", "infeasible", "unknown", "degenerate")
 # The levels judged by sampling planners (OMPL's RRT, KPIECE1, EST): a design they do not
@@ -59,13 +67,15 @@ RUN_COLUMNS = (
 )
 
 _SCHEMA_STATUSES = ", ".join(f"'{status}'" for status in STATUSES)
-_SCHEMA = f"""
-CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+_DESIGNS = """
 CREATE TABLE IF NOT EXISTS designs (
     design_id INTEGER PRIMARY KEY,
     holdout INTEGER NOT NULL,
-    {", ".join(f"{name} REAL NOT NULL" for name in PARAMETER_NAMES)}
-);
+    {columns}
+);"""
+_TABLES = f"""
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+{{designs}}
 CREATE TABLE IF NOT EXISTS evaluations (
     design_id INTEGER NOT NULL REFERENCES designs(design_id),
     level TEXT NOT NULL,
@@ -124,6 +134,16 @@ CREATE TABLE IF NOT EXISTS verdicts (
     verdict TEXT NOT NULL
 );
 """
+
+
+def schema(parameters: Sequence[str] = PARAMETER_NAMES) -> str:
+    """The database's schema with ``parameters`` as the ``designs`` table's columns (names
+    checked by :func:`experiments.sweep.family.column_problem`; quoted all the same)."""
+    columns = ", ".join(f'"{name}" REAL NOT NULL' for name in parameters)
+    return _TABLES.replace("{designs}", _DESIGNS.replace("{columns}", columns))
+
+
+_SCHEMA = schema()
 DECISIONS = ("works", "fails", "undecided")
 
 
@@ -171,12 +191,17 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
         if config is not None:
             count, seed = int(config["designs"]["count"]), int(config["designs"]["seed"])
             levels = tuple(str(rung["level"]) for rung in config["ladder"])
+        family = json.loads(meta["family"]) if "family" in meta else None
+        parameters, entries, space = _family_columns(family)
     except (UnicodeDecodeError, ValueError, KeyError, TypeError, AttributeError) as exc:
         return f"meta: the stored config cannot be read ({type(exc).__name__})"
     finally:
         db.text_factory = str
+    if table_columns(db)["designs"][2:] != list(parameters):
+        return "designs: the parameter columns are not those of the sweep's family"
+    quoted = ", ".join(f'"{name}"' for name in parameters)
     stored = db.execute(
-        f"SELECT design_id, holdout, {', '.join(PARAMETER_NAMES)} FROM designs ORDER BY design_id"
+        f"SELECT design_id, holdout, {quoted} FROM designs ORDER BY design_id"
     ).fetchall()
     if any(
         row[1] not in (0, 1) or not all(isinstance(v, float) for v in row[2:]) for row in stored
@@ -185,7 +210,7 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     if config is None:
         levels = RUNG_NAMES
     elif stored:
-        expected = halton_points(count, seed)
+        expected = halton_points(count, seed, space)
         ids = [row[0] for row in stored]
         if ids != list(range(len(stored))) or len(stored) > count:
             return "designs: the design ids are not those of the config"
@@ -194,7 +219,7 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     names = {
         "levels": ", ".join(f"'{lv}'" for lv in levels),
         "statuses": ", ".join(f"'{s}'" for s in STATUSES),
-        "orientations": "'heavy_leading', 'heavy_trailing'",
+        "orientations": ", ".join("'{}'".format(e.replace("'", "''")) for e in entries),
     }
     checks = {
         "evaluations": f"""level NOT IN ({names["levels"]}) OR status NOT IN ({names["statuses"]})
@@ -246,6 +271,33 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     return None
 
 
+def _family_columns(
+    family: dict[str, Any] | None,
+) -> tuple[tuple[str, ...], tuple[str, ...], DesignSpace]:
+    """The parameter names, entry names and design box of a stored family (``meta``'s
+    ``family``; None: the feeder's, with Table 2's box)."""
+    if family is None:
+        return PARAMETER_NAMES, ORIENTATIONS, DESIGN_SPACE
+    parameters = tuple(str(name) for name in family["parameters"])
+    entries = tuple(str(name) for name in family["entries"])
+    box = tuple(zip(map(float, family["low"]), map(float, family["high"]), strict=True))
+    if len(box) != len(parameters):
+        raise ValueError("the family's box is not its parameters'")
+    return parameters, entries, DesignSpace(box)
+
+
+def stored_family(db: sqlite3.Connection) -> dict[str, Any] | None:
+    """The device family a results database belongs to
+    (:func:`experiments.sweep.family.family_record`), or None: the 12-parameter feeder's."""
+    row = db.execute("SELECT value FROM meta WHERE key = 'family'").fetchone()
+    return None if row is None else json.loads(row[0])
+
+
+def parameter_names(db: sqlite3.Connection) -> tuple[str, ...]:
+    """The design parameters of a results database: its ``designs`` table's columns."""
+    return tuple(table_columns(db)["designs"][2:])
+
+
 def _log_problem(db: sqlite3.Connection) -> str | None:
     """The first stored OMPL log that is not UTF-8 text (garbage inside its record), named
     by its design, level and entry orientation. ``ompl/benchmark.db``, what Planner Arena
@@ -276,7 +328,7 @@ def check_database(path: str | Path) -> bool:
     new)."""
     return check_file(
         path,
-        _SCHEMA,
+        schema(_stored_parameters(Path(path))),
         damaged,
         "results database",
         added_later={"verdicts"},
@@ -284,11 +336,38 @@ def check_database(path: str | Path) -> bool:
     )
 
 
-def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
+def _stored_parameters(path: Path) -> tuple[str, ...]:
+    """The parameter columns of the ``designs`` table of the file at ``path`` (a family's
+    sweep has its own), read only; the feeder's when none can be read (a missing, damaged
+    or foreign file: :func:`check_database` then says what is wrong with it)."""
+    try:
+        info = path.stat()
+        if not stat.S_ISREG(info.st_mode) or info.st_size == 0:
+            return PARAMETER_NAMES
+        with path.open("rb") as handle:
+            if header_problem(handle.read(100), info.st_size):
+                return PARAMETER_NAMES
+        db = open_read_only(path)
+        try:
+            columns = table_columns(db).get("designs") or []
+        finally:
+            db.close()
+    except (OSError, sqlite3.DatabaseError):
+        return PARAMETER_NAMES
+    if columns[:2] == ["design_id", "holdout"] and len(columns) > 2:
+        return tuple(columns[2:])
+    return PARAMETER_NAMES
+
+
+def connect(
+    path: str | Path, readonly: bool = False, parameters: Sequence[str] = PARAMETER_NAMES
+) -> sqlite3.Connection:
     """Open a results database (created if missing, unless ``readonly``), after
     :func:`check_database` has found it sound. ``readonly`` opens it with
     :func:`experiments.database_file.open_read_only`: nothing is written or created beside
-    it, so a finished sweep is read in a directory this process may not write."""
+    it, so a finished sweep is read in a directory this process may not write. A database
+    created here gets ``parameters`` as its design columns (a family's sweep: the family's;
+    :func:`claim` refuses one of other parameters)."""
     path = Path(path)
     ours = check_database(path)
     if readonly:
@@ -302,7 +381,7 @@ def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
         db = sqlite3.connect(path, timeout=30.0)
         db.execute("PRAGMA journal_mode=WAL")
         db.execute("PRAGMA synchronous=NORMAL")  # durable against a killed process
-        db.executescript(_SCHEMA)
+        db.executescript(schema(parameters))
         _allow_every_status(db)
     db.row_factory = sqlite3.Row
     return db
@@ -334,10 +413,20 @@ def _allow_every_status(db: sqlite3.Connection) -> None:
     db.commit()
 
 
-def claim(db: sqlite3.Connection, config: dict[str, Any], results_key: str) -> None:
-    """Tie the database to a config; a database of another config raises
-    :class:`ResultsMismatch` (its results are not mixed with this config's)."""
+def claim(
+    db: sqlite3.Connection,
+    config: dict[str, Any],
+    results_key: str,
+    family: dict[str, Any] | None = None,
+) -> None:
+    """Tie the database to a config and its device family (``family``:
+    :func:`experiments.sweep.family.family_record`; None: the 12-parameter feeder); a
+    database of another config raises :class:`ResultsMismatch` (its results are not mixed
+    with this config's), naming the field when it is the family or its parameters."""
     row = db.execute("SELECT value FROM meta WHERE key = 'results_key'").fetchone()
+    problem = _family_mismatch(db, family, claimed=row is not None)
+    if problem:
+        raise ResultsMismatch(f"{problem}; choose another --out or remove it")
     if row is not None and row["value"] != results_key:
         raise ResultsMismatch(
             "this directory holds a sweep of another config (results key "
@@ -348,11 +437,42 @@ def claim(db: sqlite3.Connection, config: dict[str, Any], results_key: str) -> N
         db.execute("INSERT OR IGNORE INTO meta VALUES ('results_key', ?)", (results_key,))
         db.execute("INSERT OR IGNORE INTO meta VALUES ('created', ?)", (time.ctime(),))
         db.execute("INSERT OR REPLACE INTO meta VALUES ('config', ?)", (json.dumps(config),))
+        if family is not None:
+            db.execute("INSERT OR IGNORE INTO meta VALUES ('family', ?)", (json.dumps(family),))
+
+
+def _family_mismatch(
+    db: sqlite3.Connection, family: dict[str, Any] | None, claimed: bool
+) -> str | None:
+    """Why the database cannot hold the sweep of ``family`` (None: the feeder), or None: it
+    belongs to another family (``family``), or its design columns are not the family's
+    parameters (``parameters``)."""
+
+    def called(f: dict[str, Any] | None) -> str:
+        return "the 12-parameter feeder" if f is None else f"family '{f['name']}'"
+
+    stored = stored_family(db)
+    if (claimed and (stored is None) != (family is None)) or (
+        stored is not None and family is not None and stored["name"] != family["name"]
+    ):
+        return (
+            f"family: this directory holds a sweep of {called(stored)}, this config's is "
+            f"{called(family)}"
+        )
+    expected = list(PARAMETER_NAMES if family is None else family["parameters"])
+    columns = list(parameter_names(db))
+    if columns != expected:
+        return (
+            f"parameters: this directory holds a sweep of parameters {columns}, "
+            f"{called(family)} has {expected}"
+        )
+    return None
 
 
 def add_designs(db: sqlite3.Connection, rows: Iterable[tuple[int, bool, list[float]]]) -> None:
-    """Store designs (design_id, holdout, 12 values); ones already stored are kept."""
-    marks = ", ".join("?" * (2 + len(PARAMETER_NAMES)))
+    """Store designs (design_id, holdout, values: one per parameter column); ones already
+    stored are kept."""
+    marks = ", ".join("?" * (2 + len(parameter_names(db))))
     with db:
         db.executemany(
             f"INSERT OR IGNORE INTO designs VALUES ({marks})",
@@ -376,7 +496,7 @@ def record(db: sqlite3.Connection, result: dict[str, Any], rung: int, attempts: 
     """Store one evaluation with its runs and logs, atomically. Returns False (and stores
     nothing) if that (design, level) is already stored."""
     key = (int(result["design_id"]), str(result["level"]))
-    orientations = result["orientations"]
+    first, second = _two_entries(result["orientations"])
     with db:
         cursor = db.execute(
             "INSERT OR IGNORE INTO evaluations VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
@@ -385,8 +505,8 @@ def record(db: sqlite3.Connection, result: dict[str, Any], rung: int, attempts: 
                 rung,
                 result["status"],
                 result.get("reason"),
-                _flag(orientations.get("heavy_leading")),
-                _flag(orientations.get("heavy_trailing")),
+                _flag(first),
+                _flag(second),
                 float(result["wall_time_s"]),
                 result.get("worker"),
                 attempts,
@@ -410,8 +530,17 @@ def record(db: sqlite3.Connection, result: dict[str, Any], rung: int, attempts: 
     return True
 
 
+def _two_entries(per_entry: dict[str, Any]) -> tuple[Any, Any]:
+    """The feeder's entries' values by name (heavy leading, heavy trailing), else a family's
+    first and second entry's, in its file's order (the columns named after the feeder's)."""
+    if set(per_entry) <= set(ORIENTATIONS):
+        return per_entry.get(ORIENTATIONS[0]), per_entry.get(ORIENTATIONS[1])
+    values = [*per_entry.values(), None, None]
+    return values[0], values[1]
+
+
 def _record_verdict(db: sqlite3.Connection, design_id: int, verdict: dict, seed: int) -> None:
-    per = verdict["orientations"]
+    first, second = _two_entries(verdict["orientations"])
     db.execute(
         "INSERT INTO verdicts VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
         (
@@ -419,11 +548,11 @@ def _record_verdict(db: sqlite3.Connection, design_id: int, verdict: dict, seed:
             verdict["decision"],
             float(verdict["target"]),
             int(verdict["drops"]),
-            int(per["heavy_leading"]["successes"]),
-            int(per["heavy_trailing"]["successes"]),
+            int(first["successes"]),
+            int(second["successes"]),
             int(verdict["both"]["successes"]),
-            per["heavy_leading"]["mean_exit_time_s"],
-            per["heavy_trailing"]["mean_exit_time_s"],
+            first["mean_exit_time_s"],
+            second["mean_exit_time_s"],
             seed,
             json.dumps(verdict),
         ),

@@ -40,6 +40,9 @@
 - Best designs: with a passive rung, the designs that work ranked by the lower bound of
   P(both), then by the slower entry's mean exit time; else feasible at the top level, ranked
   by the slower entry's fastest planned exit time (Eq. 10).
+- The design parameters (``parameters``: the database's design columns) and, for a device
+  family's sweep (issue 24), the family (``family``: name, parameters, box, entries; None for
+  the 12-parameter feeder).
 """
 
 from __future__ import annotations
@@ -56,7 +59,6 @@ import numpy as np
 from experiments.names import NECESSARY, PASSIVE, SCREEN
 from experiments.proportions import wilson_interval
 from experiments.sweep import results_db
-from feeders.design import PARAMETER_NAMES
 
 BOOTSTRAP_SAMPLES = 2000
 BEST_DESIGNS = 6
@@ -100,8 +102,9 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
     meta = {r["key"]: r["value"] for r in db.execute("SELECT key, value FROM meta")}
     config = json.loads(meta.get("config", "{}"))
     ladder = [r["level"] for r in config.get("ladder", [])]
+    parameters = results_db.parameter_names(db)
     designs = {
-        r["design_id"]: (bool(r["holdout"]), [r[name] for name in PARAMETER_NAMES])
+        r["design_id"]: (bool(r["holdout"]), [r[name] for name in parameters])
         for r in db.execute("SELECT * FROM designs")
     }
     status: dict[tuple[int, str], str] = {}
@@ -219,6 +222,8 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
         "holdout": len(holdout),
         "ladder": ladder,
         "feeder": config.get("feeder", {}),
+        "parameters": list(parameters),
+        "family": _family_summary(results_db.stored_family(db)),
         "levels": levels,
         "planners": planners,
         "truth": truth_level,
@@ -231,6 +236,14 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
         "best": best[:BEST_DESIGNS],
         "quarantined": quarantined,
     }
+
+
+def _family_summary(family: dict[str, Any] | None) -> dict[str, Any] | None:
+    """The sweep's device family as the summary shows it (its name, parameters, box and
+    entries, not its file's text), or None: the 12-parameter feeder."""
+    if family is None:
+        return None
+    return {k: family[k] for k in ("name", "parameters", "low", "high", "entries")}
 
 
 def _best_by_planning(db, ladder, designs, status) -> list[dict[str, Any]]:
