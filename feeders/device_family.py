@@ -20,8 +20,15 @@ says the same kind of thing as data, with every coordinate an expression of name
       - require: "pin_x + pin_r < 1.0"
         reason: the pin touches the wall below the lip
     bounds: [-2.5, 5, -4.4, 6]       # optional: x_min, x_max, y_min, y_max of the centre of mass
-    part: {length: 2.2, width: 0.7}  # optional, as in a scene file; also friction,
+    part: {length: 2.2, width: 0.7}  # optional, as in a scene file, or a composite part
+                                     # (``cup``, ``pieces``, ``outline``); also friction,
                                      # restitution, gravity, inputs
+    orientations:                    # optional: the part's named orientation classes
+      open end up: {yaw: "-pi/2", tolerance: "pi/4"}
+      on its side: {yaw: [0, pi], tolerance: "pi/4"}
+
+The goal may name the classes it accepts (``orientation: open end up``, or a list, with an
+optional tighter ``yaw_tol``) in place of ``yaw`` and ``yaw_tol``.
 
 A family is read once (:func:`family_from_dict`, :func:`load_family`): every expression is
 compiled and may name only the family's parameters, and the default vector must build, else
@@ -44,6 +51,7 @@ from typing import Any, TypeAlias
 import numpy as np
 from shapely.geometry import LinearRing
 
+from feeders.composite_part import CompositePart
 from feeders.design import DesignSpace
 from feeders.expressions import RESERVED, Expression, ExpressionError, compile_expression
 from feeders.feeder import DEFAULT_FRICTION, DegenerateDesign
@@ -57,13 +65,24 @@ from feeders.fields import (
     shown,
 )
 from feeders.part import DEFAULT_PEG, Peg
-from feeders.scene import Goal, InputSet, Pose, Scene
+from feeders.scene import (
+    MAX_CENTRES,
+    OTHER_ORIENTATION,
+    PEG_ORIENTATIONS,
+    Goal,
+    InputSet,
+    OrientationClass,
+    Pose,
+    Scene,
+    orientation_of,
+)
 from feeders.scene_checks import MAX_COORDINATE, MAX_STARTS, scene_problems
 from feeders.scene_yaml import ENVIRONMENT_KEYS, MAX_OBSTACLES, MAX_VERTICES, environment_from_dict
 from feeders.shapes import Obstacles, is_convex, signed_area
 
 MAX_PARAMETERS = 64
 MAX_RULES = 100
+MAX_ORIENTATIONS = 32  # named orientation classes of a family's part
 MIN_AREA = 1e-9  # (length^2) a polygon piece of less area is degenerate
 
 _TOP_KEYS = {
@@ -74,6 +93,7 @@ _TOP_KEYS = {
     "goal",
     "rules",
     "bounds",
+    "orientations",
 } | ENVIRONMENT_KEYS
 
 
@@ -125,12 +145,15 @@ class Rule:
 @dataclass(frozen=True)
 class GoalSpec:
     """The exit region as expressions: the centre of mass in ``x`` x ``y`` (each ``(low,
-    high)``), the yaw within ``yaw_tol`` of ``yaw`` (:class:`feeders.scene.Goal`)."""
+    high)``), and either the yaw within ``yaw_tol`` of ``yaw`` (its class is the one holding
+    ``yaw``) or, with ``orientations`` (class names), within ``yaw_tol`` (None: each class's
+    tolerance) of any centre of those classes (:class:`feeders.scene.Goal`)."""
 
     x: tuple[Expression, Expression]
     y: tuple[Expression, Expression]
-    yaw: Expression
-    yaw_tol: Expression
+    yaw: Expression | None
+    yaw_tol: Expression | None
+    orientations: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -148,11 +171,12 @@ class DeviceFamily:
     goal: GoalSpec
     rules: tuple[Rule, ...] = ()
     scene_bounds: tuple[Expression, Expression, Expression, Expression] | None = None
-    part: Peg = DEFAULT_PEG
+    part: Peg | CompositePart = DEFAULT_PEG
     friction: float = DEFAULT_FRICTION
     restitution: float = 0.3
     gravity: tuple[float, float] = (0.0, -9.81)
     inputs: InputSet = field(default_factory=InputSet)
+    orientations: tuple[OrientationClass, ...] = PEG_ORIENTATIONS
 
     @property
     def vector_names(self) -> tuple[str, ...]:
@@ -245,22 +269,7 @@ class DeviceFamily:
             name: (pose[0].evaluate(values), pose[1].evaluate(values), pose[2].evaluate(values))
             for name, pose in self.entries
         }
-        goal_values = [e.evaluate(values) for e in (*self.goal.x, *self.goal.y)]
-        yaw, yaw_tol = self.goal.yaw.evaluate(values), self.goal.yaw_tol.evaluate(values)
-        goal_names = _ordered(
-            _names((*self.goal.x, *self.goal.y, self.goal.yaw, self.goal.yaw_tol)), self
-        )
-        if not (goal_values[0] < goal_values[1] and goal_values[2] < goal_values[3]):
-            raise DegenerateDesign(
-                f"goal: the box x {goal_values[:2]}, y {goal_values[2:]} has no size", goal_names
-            )
-        if not (0.0 < yaw_tol <= math.pi and abs(yaw) <= math.pi):
-            raise DegenerateDesign(
-                f"goal: yaw = {yaw:g} must lie in [-pi, pi] and yaw_tol = {yaw_tol:g} in (0, pi]",
-                goal_names,
-            )
-        x_min, x_max, y_min, y_max = goal_values
-        goal = Goal(x_min, x_max, y_min, y_max, yaw, yaw_tol)
+        goal = self._goal(values)
         obstacles = Obstacles(
             tuple(polygons),
             np.array(circles, dtype=float).reshape(-1, 3),
@@ -269,7 +278,8 @@ class DeviceFamily:
         scene = Scene(
             name=self.name,
             obstacles=obstacles,
-            part=self.part,
+            # Scene.part is typed Peg until the levels take a CompositePart (issue 24)
+            part=self.part,  # type: ignore[arg-type]
             bounds=self._bounds(values, obstacles),
             starts=starts,
             goal=goal,
@@ -277,11 +287,54 @@ class DeviceFamily:
             friction=self.friction,
             inputs=self.inputs,
             restitution=self.restitution,
+            orientations=self.orientations,
         )
         problems = scene_problems(scene)
         if problems:
             raise DegenerateDesign(problems[0], self.vector_names)
         return scene
+
+    def _goal(self, values: dict[str, float]) -> Goal:
+        """The goal at ``values``: its box, its yaw windows and the classes it accepts."""
+        spec = self.goal
+        tol_exprs = () if spec.yaw_tol is None else (spec.yaw_tol,)
+        yaw_exprs = () if spec.yaw is None else (spec.yaw,)
+        goal_values = [e.evaluate(values) for e in (*spec.x, *spec.y)]
+        names = _ordered(_names((*spec.x, *spec.y, *yaw_exprs, *tol_exprs)), self)
+        if not (goal_values[0] < goal_values[1] and goal_values[2] < goal_values[3]):
+            raise DegenerateDesign(
+                f"goal: the box x {goal_values[:2]}, y {goal_values[2:]} has no size", names
+            )
+        tol = None if spec.yaw_tol is None else spec.yaw_tol.evaluate(values)
+        if spec.yaw is not None:
+            yaw = spec.yaw.evaluate(values)
+            if not (tol is not None and 0.0 < tol <= math.pi and abs(yaw) <= math.pi):
+                raise DegenerateDesign(
+                    f"goal: yaw = {yaw:g} must lie in [-pi, pi] and yaw_tol = {tol:g} in (0, pi]",
+                    names,
+                )
+            accepted: tuple[str, ...] = (orientation_of(self.orientations, yaw),)
+            if accepted[0] == OTHER_ORIENTATION:
+                raise DegenerateDesign(
+                    f"goal: yaw = {yaw:g} lies in no orientation class of the part "
+                    f"({', '.join(c.name for c in self.orientations)}); widen a class or "
+                    "name the goal's class (goal.orientation)",
+                    names,
+                )
+            windows = [(yaw, tol)]
+        else:
+            if tol is not None and not 0.0 < tol <= math.pi:
+                raise DegenerateDesign(f"goal: yaw_tol = {tol:g} must lie in (0, pi]", names)
+            accepted = spec.orientations
+            by_name = {c.name: c for c in self.orientations}
+            windows = [
+                (centre, by_name[n].tolerance if tol is None else tol)
+                for n in accepted
+                for centre in by_name[n].centres
+            ]
+        x_min, x_max, y_min, y_max = goal_values
+        (yaw0, tol0), *more = windows
+        return Goal(x_min, x_max, y_min, y_max, yaw0, tol0, tuple(more), accepted)
 
     def _polygon(self, piece: PolygonPiece, values: dict[str, float]) -> np.ndarray:
         """The piece's vertices, counter-clockwise, checked convex, simple and of area."""
@@ -427,18 +480,97 @@ def _entries(
     return tuple(out)
 
 
-def _goal(spec: Any, prefix: str, known: tuple[str, ...]) -> GoalSpec:
+def _goal(
+    spec: Any, prefix: str, known: tuple[str, ...], classes: tuple[OrientationClass, ...]
+) -> GoalSpec:
     where = f"{prefix}goal"
-    spec = mapping_field(spec, where, {"x", "y", "yaw", "yaw_tol"})
-    for key in ("x", "y", "yaw", "yaw_tol"):
+    spec = mapping_field(spec, where, {"x", "y", "yaw", "yaw_tol", "orientation"})
+    for key in ("x", "y"):
         if key not in spec:
             raise FamilyError(f"{where}.{key} is required")
-    return GoalSpec(
-        _pair(spec["x"], f"{where}.x", known),
-        _pair(spec["y"], f"{where}.y", known),
-        compile_expression(spec["yaw"], f"{where}.yaw", known),
-        compile_expression(spec["yaw_tol"], f"{where}.yaw_tol", known),
-    )
+    x, y = _pair(spec["x"], f"{where}.x", known), _pair(spec["y"], f"{where}.y", known)
+    tol = spec.get("yaw_tol")
+    yaw_tol = None if tol is None else compile_expression(tol, f"{where}.yaw_tol", known)
+    if "orientation" not in spec:
+        if "yaw" in spec and yaw_tol is None:
+            raise FamilyError(f"{where}.yaw_tol is required with {where}.yaw")
+        if "yaw" not in spec and yaw_tol is not None:
+            raise FamilyError(f"{where}.yaw is required (or {where}.orientation) with yaw_tol")
+        if "yaw" not in spec:
+            raise FamilyError(
+                f"{where}: give 'yaw' and 'yaw_tol', or 'orientation' (the classes it accepts, "
+                "of the part's orientations) with an optional 'yaw_tol'"
+            )
+        yaw = compile_expression(spec["yaw"], f"{where}.yaw", known)
+        return GoalSpec(x, y, yaw, yaw_tol)
+    if "yaw" in spec:
+        raise FamilyError(f"{where}: give 'yaw' or 'orientation', not both")
+    names = spec["orientation"]
+    names = names if isinstance(names, list) else [names]
+    allowed = [c.name for c in classes]
+    if not names:
+        raise FamilyError(f"{where}.orientation: name one or more of: {', '.join(allowed)}")
+    for name in names:
+        if name not in allowed:
+            raise FamilyError(
+                f"{where}.orientation = {shown(repr(name))}: not an orientation class of the "
+                f"part; the classes are: {', '.join(allowed)} (see orientations)"
+            )
+    return GoalSpec(x, y, None, yaw_tol, tuple(dict.fromkeys(names)))
+
+
+def _orientations(spec: Any, prefix: str) -> tuple[OrientationClass, ...]:
+    """The part's orientation classes: name -> {yaw: centre or [centres], tolerance} (rad,
+    numbers or expressions of constants; tolerance in (0, pi], default pi)."""
+    field_name = f"{prefix}orientations"
+    if spec is None:
+        return PEG_ORIENTATIONS
+    if not isinstance(spec, dict) or not spec:
+        raise FamilyError(
+            f"{field_name}: expected a mapping name: {{yaw: centre or [centres], tolerance}}"
+        )
+    if len(spec) > MAX_ORIENTATIONS:
+        raise FamilyError(
+            f"{field_name}: {len(spec)} classes; at most {MAX_ORIENTATIONS} are allowed"
+        )
+    out = []
+    for name, item in spec.items():
+        label = name_field(name, f"{field_name} name")
+        where = f"{field_name}.{label}"
+        if label == OTHER_ORIENTATION:
+            raise FamilyError(
+                f"{where}: '{OTHER_ORIENTATION}' is the class of a yaw in no window; "
+                "name the class otherwise"
+            )
+        item = mapping_field(item, where, {"yaw", "tolerance"})
+        if "yaw" not in item:
+            raise FamilyError(f"{where}.yaw is required (a centre or a list of centres, rad)")
+        yaws = item["yaw"] if isinstance(item["yaw"], list) else [item["yaw"]]
+        if not 1 <= len(yaws) <= MAX_CENTRES:
+            raise FamilyError(f"{where}.yaw: give 1 to {MAX_CENTRES} centres")
+        centres = tuple(
+            _constant(v, f"{where}.yaw" + (f"[{k}]" if isinstance(item["yaw"], list) else ""))
+            for k, v in enumerate(yaws)
+        )
+        for k, centre in enumerate(centres):
+            if abs(centre) > math.pi + 1e-12:
+                raise FamilyError(
+                    f"{where}.yaw = {centre:g} is outside the allowed range [-pi, pi]"
+                    + (f" (centre {k})" if len(centres) > 1 else "")
+                )
+        tolerance = _constant(item.get("tolerance", math.pi), f"{where}.tolerance")
+        if not 0.0 < tolerance <= math.pi + 1e-12:
+            raise FamilyError(
+                f"{where}.tolerance = {tolerance:g} is outside the allowed range (0, pi]"
+            )
+        centres = tuple(max(-math.pi, min(math.pi, c)) for c in centres)
+        out.append(OrientationClass(label, centres, min(tolerance, math.pi)))
+    return tuple(out)
+
+
+def _constant(value: Any, field_name: str) -> float:
+    """A number or an expression of constants (``"-pi/2"``), its value."""
+    return compile_expression(value, field_name, ()).evaluate({})
 
 
 def _rules(spec: Any, prefix: str, known: tuple[str, ...]) -> tuple[Rule, ...]:
@@ -502,13 +634,14 @@ def _family(data: Any, prefix: str, name: str) -> DeviceFamily:
     family_name = name_field(data.get("name", name), f"{prefix}name")
     parameters = _parameters(data["parameters"], prefix)
     known = tuple(p.name for p in parameters)
-    env = environment_from_dict(data, prefix)
+    env = environment_from_dict(data, prefix, composite=True)
+    classes = _orientations(data.get("orientations"), prefix)
     return DeviceFamily(
         name=family_name,
         parameters=parameters,
         pieces=_pieces(data["pieces"], prefix, known),
         entries=_entries(data["entries"], prefix, known),
-        goal=_goal(data["goal"], prefix, known),
+        goal=_goal(data["goal"], prefix, known, classes),
         rules=_rules(data.get("rules"), prefix, known),
         scene_bounds=_bounds_spec(data.get("bounds"), prefix, known),
         part=env["part"],
@@ -516,6 +649,7 @@ def _family(data: Any, prefix: str, name: str) -> DeviceFamily:
         restitution=env["restitution"],
         gravity=env["gravity"],
         inputs=env["inputs"],
+        orientations=classes,
     )
 
 

@@ -3,6 +3,12 @@
 Poses are ``(x, y, yaw)`` of the part's centre of mass, yaw along the part from its light end
 to its heavy end (radians). Lengths in the paper's units, time in seconds, gravity in
 length/s^2.
+
+A scene names the part's orientations (:class:`OrientationClass`: a name and yaw windows, a
+centre and a tolerance each); a yaw belongs to the class with the nearest centre among those
+whose window holds it, else to :data:`OTHER_ORIENTATION`. The goal accepts one or more of
+them. The feeder's scenes keep the peg's two, :data:`PEG_ORIENTATIONS` (heavy end down at
+-pi/2, heavy end up at +pi/2, each +-pi/2: every yaw has one), and accept heavy end down.
 """
 
 from __future__ import annotations
@@ -18,6 +24,11 @@ from feeders.shapes import Obstacles
 
 Pose = tuple[float, float, float]
 
+HEAVY_END_DOWN = "heavy end down"
+HEAVY_END_UP = "heavy end up"
+OTHER_ORIENTATION = "other orientation"  # a yaw in no class's window
+MAX_CENTRES = 16  # yaw centres of one orientation class
+
 
 def wrap_angle(angle: float) -> float:
     """Angle in [-pi, pi)."""
@@ -25,11 +36,67 @@ def wrap_angle(angle: float) -> float:
 
 
 @dataclass(frozen=True)
+class OrientationClass:
+    """A named orientation of the part (for the cup: "open end up"): the yaws (rad) within
+    ``tolerance`` of one of its ``centres`` (a class may have several: "on its side" is yaw 0
+    and pi). Windows of different classes may overlap: :func:`orientation_of` gives the yaw to
+    the class of the nearest centre."""
+
+    name: str
+    centres: tuple[float, ...]
+    tolerance: float = math.pi
+
+    def __post_init__(self) -> None:
+        if not self.name or self.name == OTHER_ORIENTATION:
+            raise ValueError(f"orientations: the name {self.name!r} is not allowed")
+        if not 1 <= len(self.centres) <= MAX_CENTRES:
+            raise ValueError(
+                f"orientations.{self.name}: {len(self.centres)} yaws; give 1 to {MAX_CENTRES}"
+            )
+        for yaw in self.centres:
+            if not (math.isfinite(yaw) and abs(yaw) <= math.pi):
+                raise ValueError(
+                    f"orientations.{self.name}.yaw = {yaw!r} is outside the range [-pi, pi]"
+                )
+        if not (math.isfinite(self.tolerance) and 0.0 < self.tolerance <= math.pi):
+            raise ValueError(
+                f"orientations.{self.name}.tolerance = {self.tolerance!r} is outside the range "
+                "(0, pi]"
+            )
+
+    def distance(self, yaw: float) -> float:
+        """How far (rad, in [0, pi]) ``yaw`` is from the nearest of the centres."""
+        return min(abs(wrap_angle(yaw - c)) for c in self.centres)
+
+
+PEG_ORIENTATIONS = (
+    OrientationClass(HEAVY_END_DOWN, (-math.pi / 2,), math.pi / 2),
+    OrientationClass(HEAVY_END_UP, (math.pi / 2,), math.pi / 2),
+)
+"""The peg's classes (the feeder's, and any scene's that names none): every yaw has one."""
+
+
+def orientation_of(classes: tuple[OrientationClass, ...], yaw: float) -> str:
+    """The class of ``yaw``: of the classes whose window holds it, the one with the nearest
+    centre (the first listed on a tie); :data:`OTHER_ORIENTATION` when none holds it."""
+    best, name = math.inf, OTHER_ORIENTATION
+    for c in classes:
+        d = c.distance(yaw)
+        if d <= c.tolerance and d < best:
+            best, name = d, c.name
+    return name
+
+
+@dataclass(frozen=True)
 class Goal:
-    """Goal region: the centre of mass inside a box and the yaw within ``yaw_tol`` of ``yaw``.
+    """Goal region: the centre of mass inside a box and the yaw within ``yaw_tol`` of ``yaw``
+    or within one of the ``more_yaws`` windows ``(centre, tolerance)``: a set of acceptable
+    poses. ``orientations`` names the orientation classes the goal accepts (the scene's
+    :class:`OrientationClass` names; a drop in the goal is one of them, the first unless its
+    yaw's class is another of them).
 
     For the feeder: a box well inside the exit chute, heavy end down (``yaw = -pi/2``).
-    ``target`` is the paper's q_goal (Eq. 10): the top-centre of the box, at that yaw.
+    ``target`` is the paper's q_goal (Eq. 10): the top-centre of the box, at ``yaw``.
     """
 
     x_min: float
@@ -38,12 +105,22 @@ class Goal:
     y_max: float
     yaw: float
     yaw_tol: float
+    more_yaws: tuple[tuple[float, float], ...] = ()
+    orientations: tuple[str, ...] = (HEAVY_END_DOWN,)
 
     def __post_init__(self) -> None:
         if not (self.x_min < self.x_max and self.y_min < self.y_max):
             raise ValueError("goal: need x_min < x_max and y_min < y_max")
-        if not 0.0 < self.yaw_tol <= math.pi:
-            raise ValueError(f"goal: yaw_tol = {self.yaw_tol} is outside the range (0, pi]")
+        for _, tol in self.windows:
+            if not 0.0 < tol <= math.pi:
+                raise ValueError(f"goal: yaw_tol = {tol} is outside the range (0, pi]")
+        if not self.orientations:
+            raise ValueError("goal: it accepts at least one orientation class")
+
+    @property
+    def windows(self) -> tuple[tuple[float, float], ...]:
+        """Every acceptable yaw window ``(centre, tolerance)`` (rad), ``(yaw, yaw_tol)`` first."""
+        return ((self.yaw, self.yaw_tol), *self.more_yaws)
 
     @property
     def target(self) -> Pose:
@@ -56,8 +133,8 @@ class Goal:
         return math.hypot(dx, dy)
 
     def yaw_gap(self, yaw: float) -> float:
-        """How far (rad) the yaw is outside the tolerance (0 within it)."""
-        return max(abs(wrap_angle(yaw - self.yaw)) - self.yaw_tol, 0.0)
+        """How far (rad) the yaw is outside the nearest window (0 within one)."""
+        return min(max(abs(wrap_angle(yaw - c)) - tol, 0.0) for c, tol in self.windows)
 
     def contains(self, pose: Pose) -> bool:
         return self.position_gap(pose[0], pose[1]) == 0.0 and self.yaw_gap(pose[2]) == 0.0
@@ -112,7 +189,9 @@ class Scene:
     kinematic level's impacts (Stronge's energetic one: 0 plastic, 1 elastic; the dynamic
     level of the paper has none). ``outline`` is the
     free interior of a parametric feeder, a CCW polygon used for drawing (None for free-form
-    scenes); ``design`` is the feeder's design when there is one.
+    scenes); ``design`` is the feeder's design when there is one. ``orientations`` are the
+    part's named orientation classes (the peg's two unless given); the goal's
+    ``orientations`` must be among them.
     """
 
     name: str
@@ -127,8 +206,18 @@ class Scene:
     restitution: float = 0.3
     design: DesignParameters | None = None
     outline: np.ndarray | None = None
+    orientations: tuple[OrientationClass, ...] = PEG_ORIENTATIONS
 
     def __post_init__(self) -> None:
+        names = [c.name for c in self.orientations]
+        if not names or len(set(names)) != len(names):
+            raise ValueError(f"orientations: expected distinct class names, got {names}")
+        unknown = [n for n in self.goal.orientations if n not in names]
+        if unknown:
+            raise ValueError(
+                f"goal.orientation: {unknown[0]!r} is not an orientation class of the part; "
+                f"the classes are: {', '.join(names)}"
+            )
         if not (math.isfinite(self.friction) and 0.0 <= self.friction <= 10.0):
             raise ValueError(f"friction = {self.friction!r} is outside the allowed range [0, 10]")
         if not (math.isfinite(self.restitution) and 0.0 <= self.restitution <= 1.0):
@@ -143,3 +232,14 @@ class Scene:
             raise ValueError(
                 f"unknown orientation '{orientation}'; this scene has: {', '.join(self.starts)}"
             ) from None
+
+    def orientation_of(self, yaw: float) -> str:
+        """The orientation class of ``yaw`` (:func:`orientation_of` over the scene's classes)."""
+        return orientation_of(self.orientations, yaw)
+
+    @property
+    def orientation_names(self) -> tuple[str, ...]:
+        """The classes' names, the goal's first (in its order), then the others (in the
+        scene's order)."""
+        accepted = self.goal.orientations
+        return (*accepted, *(c.name for c in self.orientations if c.name not in accepted))

@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from feeders.composite_part import CompositePart, part_from_dict
+from feeders.cup import cup_part
 from feeders.design import DesignError, DesignParameters, preset
 from feeders.feeder import DEFAULT_FRICTION, DegenerateDesign, build_feeder
 from feeders.fields import (
@@ -38,6 +40,7 @@ from feeders.fields import (
     number_field,
     numbers_field,
     read_yaml,
+    shown,
 )
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
@@ -68,10 +71,33 @@ _TOP_KEYS = {
 }
 
 
-def _part(spec: Any) -> Peg:
+PEG_KEYS = {"length", "width", "mass", "heavy_fraction"}
+COMPOSITE_KEYS = {"pieces", "outline", "density"}
+PACKAGED_PARTS = ("cup",)  # part: cup is feeders.cup.cup_part()
+
+
+def _part(spec: Any, composite: bool = False) -> Peg | CompositePart:
+    """The part of ``part:``: the two-density peg's keys (:data:`PEG_KEYS`; the default peg
+    when absent), or, where ``composite`` parts are taken, a packaged part by name
+    (:data:`PACKAGED_PARTS`) or the pieces of :func:`feeders.composite_part.part_from_dict`
+    (:data:`COMPOSITE_KEYS`). Errors name the field as ``part...``."""
     if spec is None:
         return Peg.two_density()
-    spec = mapping_field(spec, "part", {"length", "width", "mass", "heavy_fraction"})
+    if composite and isinstance(spec, str):
+        if spec == "cup":
+            return cup_part()
+        raise SceneError(
+            f"part = {shown(repr(spec))}: not a packaged part; packaged parts: "
+            f"{', '.join(PACKAGED_PARTS)} (or give a mapping)"
+        )
+    if composite and isinstance(spec, dict) and set(spec) & COMPOSITE_KEYS:
+        if set(spec) & PEG_KEYS:
+            raise SceneError(
+                f"part: give the peg's keys {sorted(PEG_KEYS)} or a composite part's "
+                f"{sorted(COMPOSITE_KEYS)}, not both"
+            )
+        return part_from_dict(spec, "part.")
+    spec = mapping_field(spec, "part", PEG_KEYS | (COMPOSITE_KEYS if composite else set()))
     args = {k: number_field(v, f"part.{k}") for k, v in spec.items()}
     try:
         return Peg.two_density(**args)
@@ -197,14 +223,17 @@ def _gravity(value: Any, field: str) -> tuple[float, float]:
 ENVIRONMENT_KEYS = {"part", "friction", "restitution", "gravity", "inputs"}
 
 
-def environment_from_dict(data: dict[str, Any], prefix: str = "") -> dict[str, Any]:
+def environment_from_dict(
+    data: dict[str, Any], prefix: str = "", composite: bool = False
+) -> dict[str, Any]:
     """What a feeder's scene needs besides its design, from the keys of
     :data:`ENVIRONMENT_KEYS` in ``data`` (others are ignored): keyword arguments of
     :func:`build_feeder` (``part``, ``inputs``, ``friction``, ``gravity``, ``restitution``).
-    Errors name the field with ``prefix`` before it."""
+    ``composite``: ``part`` may also be a composite part (a device family's; the feeder and
+    scene files take the peg). Errors name the field with ``prefix`` before it."""
     try:
         return {
-            "part": _part(data.get("part")),
+            "part": _part(data.get("part"), composite),
             "friction": number_field(
                 data.get("friction", DEFAULT_FRICTION), f"{prefix}friction", 0.0, 10.0
             ),

@@ -27,7 +27,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from experiments.drop.outcomes import OUTCOMES, SIMULATION_FAULT, classify
+from experiments.drop.outcomes import OUTCOMES, SIMULATION_FAULT, classify, outcome_classes
 from experiments.drop.passive import passive_drop
 from experiments.drop.perturbations import DropDraw, draw, toleranced
 from experiments.drop.sequential import UNDECIDED, Wald, advance, design_decision
@@ -41,6 +41,8 @@ from validity.dynamic import DynamicLevel
 
 UNBUILDABLE = "feeder not buildable"  # the toleranced design has no valid feeder
 CLASSES = (*OUTCOMES, UNBUILDABLE)
+"""The feeder's transition matrix columns (success first); a scene with other orientation
+classes has its own (:func:`classes_of`)."""
 ENTRY_RETRIES = 6  # halvings of a drop's entry offset that puts the part into a wall
 
 
@@ -71,6 +73,8 @@ class Verdict:
     target: float
     decision: str  # "works", "fails" or "undecided" (max_drops reached in between)
     wall_time: float
+    classes: tuple[str, ...] = CLASSES  # the transition matrix's columns, success first
+    success_classes: tuple[str, ...] = (OUTCOMES[0],)  # the goal's orientation classes
 
     @property
     def counted(self) -> tuple[Trial, ...]:
@@ -106,8 +110,11 @@ class Verdict:
         return self.decision == "works"
 
     def transitions(self) -> dict[str, dict[str, int]]:
-        """Entry orientation -> outcome class -> number of drops (every class listed)."""
-        out = {o: dict.fromkeys(CLASSES, 0) for o in self.orientations}
+        """Entry orientation -> outcome class -> number of drops (every class of
+        :attr:`classes` listed, then any other a drop ended in)."""
+        seen = [c for t in self.trials for c in t.outcome]
+        columns = [*self.classes, *dict.fromkeys(c for c in seen if c not in self.classes)]
+        out = {o: dict.fromkeys(columns, 0) for o in self.orientations}
         for t in self.trials:
             for o, c in zip(self.orientations, t.outcome, strict=True):
                 out[o][c] += 1
@@ -143,6 +150,7 @@ class Verdict:
                 "interval": [lo, hi],
             },
             "transitions": self.transitions(),
+            "success_classes": list(self.success_classes),
             "wall_time_s": self.wall_time,
         }
 
@@ -256,6 +264,14 @@ def verdict_of(
     """Trials of ``make_scene`` (a feeder made from a draw of ``parameters`` design factors)
     until the verdict is decided."""
     t0 = time.perf_counter()
+    made: list[Scene] = []  # the first scene made: its classes name the matrix's columns
+
+    def making(d: DropDraw) -> Scene:
+        scene = make_scene(d)
+        if not made:
+            made.append(scene)
+        return scene
+
     trials: list[Trial] = []
     counted: list[Trial] = []  # the trials without a simulation fault
     decision = UNDECIDED
@@ -263,7 +279,7 @@ def verdict_of(
     statuses = (UNDECIDED,) * len(orientations)  # the SPRT's per entry, final once decided
     for look in looks(settings):
         while len(counted) < look and len(trials) < look + settings.max_drops:
-            trial = run_trial(make_scene, orientations, settings, seed, len(trials), parameters)
+            trial = run_trial(making, orientations, settings, seed, len(trials), parameters)
             trials.append(trial)
             if not trial.fault:
                 counted.append(trial)
@@ -275,9 +291,23 @@ def verdict_of(
             decision = decide(counts, len(counted), settings.target)
         if decision != UNDECIDED or len(counted) < look:
             break
+    classes, success = classes_of(made[0]) if made else (CLASSES, (OUTCOMES[0],))
     return Verdict(
-        tuple(orientations), tuple(trials), settings.target, decision, time.perf_counter() - t0
+        tuple(orientations),
+        tuple(trials),
+        settings.target,
+        decision,
+        time.perf_counter() - t0,
+        classes,
+        success,
     )
+
+
+def classes_of(scene: Scene) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The transition matrix's columns for drops through ``scene`` (its outcome classes, the
+    goal's orientation classes first, then :data:`UNBUILDABLE`) and the goal's classes (the
+    successes). For the feeder: :data:`CLASSES` and ("heavy end down",)."""
+    return (*outcome_classes(scene), UNBUILDABLE), scene.goal.orientations
 
 
 def design_verdict(
