@@ -365,6 +365,9 @@ def comparison_of(
     from feeders.scene_yaml import environment_from_dict
 
     name, base_values = baseline or default_baseline()
+    best = with_verdicts(summary)[:COMPARED]
+    if not best:
+        return {"absent": "no design works, so none is recommended", "baseline": {"label": name}}
     if summary.get("family"):
         return {
             "absent": "the sweep is of the device family "
@@ -372,9 +375,6 @@ def comparison_of(
             "12-parameter feeder's (not yet a family's)",
             "baseline": {"label": name},
         }
-    best = with_verdicts(summary)[:COMPARED]
-    if not best:
-        return {"absent": "no design works, so none is recommended", "baseline": {"label": name}}
     config = sweep_config(db_path)
     settings = passive_settings(config)
     if settings is None:
