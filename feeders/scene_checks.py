@@ -30,9 +30,18 @@ def _solid(scene: Scene) -> shapely.Geometry:
     return shapely.union_all(pieces) if pieces else shapely.Polygon()
 
 
-def _part_at(scene: Scene, pose: tuple[float, float, float]) -> np.ndarray:
+def _pieces_at(scene: Scene, pose: tuple[float, float, float]) -> list[np.ndarray]:
+    """The part's convex pieces at ``pose``, each disc as the regular polygon through its
+    circle (:data:`feeders.part_shape.DISC_SIDES` sides)."""
+    from feeders.part_shape import DISC_SIDES, body_pieces  # composite parts import this module
+
     c, s = math.cos(pose[2]), math.sin(pose[2])
-    return scene.part.body_vertices() @ np.array([[c, s], [-s, c]]) + np.array(pose[:2])
+    rot, at = np.array([[c, s], [-s, c]]), np.array(pose[:2])
+    polygons, discs = body_pieces(scene.part)
+    angles = 2.0 * math.pi * np.arange(DISC_SIDES) / DISC_SIDES
+    ring = np.column_stack([np.cos(angles), np.sin(angles)])
+    shapes = list(polygons) + [np.array([x, y]) + r * ring for x, y, r in discs]
+    return [v @ rot + at for v in shapes]
 
 
 INSCRIBED_TOLERANCE = 1e-4
@@ -85,10 +94,12 @@ def scene_problems(scene: Scene) -> list[str]:
         problems.append(f"bounds = {list(scene.bounds)}: each must lie within +-{MAX_COORDINATE:g}")
         return problems  # the rest is measured against the bounds
     diagonal = math.hypot(x1 - x0, y1 - y0)
-    if scene.part.length > diagonal:
+    from feeders.part_shape import part_extent
+
+    if part_extent(scene.part) > diagonal:
         problems.append(
-            f"part.length = {scene.part.length:g} does not fit the scene: at most the diagonal "
-            f"of the bounds, {diagonal:.4g}"
+            f"part.length = {part_extent(scene.part):g} (its largest extent) does not fit the "
+            f"scene: at most the diagonal of the bounds, {diagonal:.4g}"
         )
         return problems
     coordinates = [np.abs(p).max() for p in scene.obstacles.polygons]
@@ -125,7 +136,7 @@ def scene_problems(scene: Scene) -> list[str]:
                 f"[{-MAX_YAW:.6g}, {MAX_YAW:.6g}]"
             )
             continue
-        depth = overlap_depth(solid, _part_at(scene, pose))
+        depth = max(overlap_depth(solid, piece) for piece in _pieces_at(scene, pose))
         if depth > START_OVERLAP:
             problems.append(
                 f"starts.{name}: the part there overlaps the obstacles by {depth:.3g}; "

@@ -19,6 +19,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.patches import Circle, Polygon, Rectangle
 
 from feeders.part import Peg
+from feeders.part_shape import Part, part_geometry
 from feeders.scene import Scene
 from planners.plan import PlanResult
 
@@ -49,12 +50,31 @@ def part_outline(part: Peg, pose: Sequence[float]) -> tuple[np.ndarray, np.ndarr
 
 
 def draw_part(
-    ax: plt.Axes, part: Peg, pose: Sequence[float], alpha: float = 1.0, edge: str = "k"
+    ax: plt.Axes, part: Part, pose: Sequence[float], alpha: float = 1.0, edge: str = "k"
 ) -> None:
-    """The part with its heavy half dark and its centre of mass as a dot."""
-    light, heavy = part_outline(part, pose)
-    ax.add_patch(Polygon(light, closed=True, fc=LIGHT, ec=edge, lw=0.6, alpha=alpha, zorder=4))
-    ax.add_patch(Polygon(heavy, closed=True, fc=HEAVY, ec=edge, lw=0.6, alpha=alpha, zorder=4))
+    """The part with its centre of mass as a dot: the peg with its heavy half dark, a
+    composite part as its outline, its densest pieces dark when its densities differ (the
+    cup, of one density, is one dark U: its shape shows which way it points)."""
+    if isinstance(part, Peg):
+        light, heavy = part_outline(part, pose)
+        ax.add_patch(Polygon(light, closed=True, fc=LIGHT, ec=edge, lw=0.6, alpha=alpha, zorder=4))
+        ax.add_patch(Polygon(heavy, closed=True, fc=HEAVY, ec=edge, lw=0.6, alpha=alpha, zorder=4))
+    else:
+        densities = part.polygon_densities + part.disc_densities
+        if max(densities) > min(densities):
+            dense = max(densities)
+            for k, piece in enumerate(part.body_polygons()):
+                fill = HEAVY if part.polygon_densities[k] == dense else LIGHT
+                c, s = math.cos(pose[2]), math.sin(pose[2])
+                world = piece @ np.array([[c, s], [-s, c]]) + np.asarray(pose[:2])
+                ax.add_patch(Polygon(world, closed=True, fc=fill, lw=0, alpha=alpha, zorder=4))
+        whole = part_geometry(part, pose)
+        for ring in getattr(whole, "geoms", [whole]):
+            fill = "none" if max(densities) > min(densities) else HEAVY
+            outline = np.asarray(ring.exterior.coords)
+            ax.add_patch(
+                Polygon(outline, closed=True, fc=fill, ec=edge, lw=0.6, alpha=alpha, zorder=4)
+            )
     ax.plot(pose[0], pose[1], "o", ms=2.5, color="k", alpha=alpha, zorder=5)
 
 
@@ -102,7 +122,7 @@ def draw_tree(ax: plt.Axes, result: PlanResult, colour: str = "#555555") -> None
 
 
 def draw_path(
-    ax: plt.Axes, result: PlanResult, part: Peg, colour: str = "#1f77b4", snapshots: int = 6
+    ax: plt.Axes, result: PlanResult, part: Part, colour: str = "#1f77b4", snapshots: int = 6
 ) -> None:
     """The centre-of-mass path (thick) and a few poses of the part along it."""
     path = result.fine_path

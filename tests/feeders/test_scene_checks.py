@@ -181,3 +181,23 @@ def test_many_star_polygons_within_the_per_polygon_limit_are_refused_by_the_tota
 def test_a_scene_name_that_cannot_name_a_file_is_refused(name) -> None:
     with pytest.raises(SceneError, match=r"^name"):
         scene_from_dict(_with("name", name))
+
+
+def test_a_cups_start_is_checked_piece_by_piece() -> None:
+    """The cup (issue 24) straddling a thin post with its opening is a sound start, though
+    the post lies inside its convex hull; moved onto the post with a wall, it overlaps by
+    the post's half width (0.05) and is refused."""
+    import dataclasses
+
+    from feeders.cup import cup_part
+
+    post = {"polygon": [[-0.05, -3], [0.05, -3], [0.05, 0.3], [-0.05, 0.3]]}
+    doc = copy.deepcopy(BOX)
+    doc["obstacles"].append(post)
+    del doc["part"]
+    scene = dataclasses.replace(scene_from_dict(doc), part=cup_part())
+    hooked = dataclasses.replace(scene, starts={"drop": (0.0, 0.6, -np.pi / 2 + np.pi)})
+    assert scene_problems(hooked) == []
+    walled = dataclasses.replace(scene, starts={"drop": (0.425, 0.6, np.pi / 2)})
+    (problem,) = scene_problems(walled)
+    assert "starts.drop" in problem and "0.05" in problem
