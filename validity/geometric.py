@@ -198,7 +198,7 @@ class GeometricLevel:
         self.step = float(step)
         self.arrays = SceneArrays.from_scene(scene)
         a = self.arrays
-        self._geometry = a.pose_scene[:-1]
+        self._geometry = a.pose_scene
         self.slack = _obstacle_slacks(slack, a.verts.shape[0], a.circles.shape[0])
         self._slacks = (
             np.ascontiguousarray(self.slack[: a.verts.shape[0]]),
@@ -213,11 +213,7 @@ class GeometricLevel:
         return (float(pose[0]), float(pose[1]), float(pose[2]))
 
     def is_valid(self, state: Sequence[float]) -> bool:
-        return bool(
-            pose_is_valid(
-                state[0], state[1], state[2], *self._geometry, self.arrays.bounds, *self._slacks
-            )
-        )
+        return bool(pose_is_valid(state[0], state[1], state[2], *self._geometry, *self._slacks))
 
     def clearance(self, state: Sequence[float]) -> float:
         """Smallest signed distance to an obstacle (negative: penetration depth)."""
@@ -236,7 +232,6 @@ class GeometricLevel:
             duration,
             self.step,
             *self._geometry,
-            self.arrays.bounds,
             *self._slacks,
         )
         return (x, y, yaw)

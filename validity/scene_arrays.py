@@ -80,7 +80,22 @@ class SceneArrays:
         )
 
     @cached_property
-    def contact_scene(self) -> tuple[np.ndarray, ...]:
+    def contact_scene(
+        self,
+    ) -> tuple[
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+    ]:
         """``(body, body_counts, body_surface, body_corners, body_discs, verts, counts, aabbs,
         circles, surface, corners, bounds)``: the part and the scene as the contact levels'
         time-stepping kernels take them, in that order."""
@@ -101,7 +116,18 @@ class SceneArrays:
         )
 
     @cached_property
-    def pose_scene(self) -> tuple[np.ndarray, ...]:
+    def pose_scene(
+        self,
+    ) -> tuple[
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+        np.ndarray,
+    ]:
         """``(body, body_counts, body_discs, verts, counts, aabbs, circles, bounds)``: the part
         and the scene as the geometric level's pose kernels take them, in that order."""
         p = self.part
