@@ -9,10 +9,10 @@ says the same kind of thing as data, with every coordinate an expression of name
     parameters:                      # ordered: the order of the vector
       theta: {low: 0.3, high: 0.9, default: 0.5}     # rad
       pin_r: {low: 0.1, high: 0.4, default: 0.2}
-    pieces:                          # obstacles: convex polygons and discs
+    pieces:                          # obstacles, as in a scene file: convex polygons, circles
       - polygon: [[0, 0], ["4*cos(theta)", "4*sin(theta)"], ...]
         label: input chute floor
-      - disc: {centre: [pin_x, pin_y], radius: pin_r}
+      - circle: {centre: [pin_x, pin_y], radius: pin_r}   # (or disc:)
     entries:                         # start pose (x, y, yaw) of the part's centre of mass
       open_leading: ["1 + 3*cos(theta)", "2 + 3*sin(theta)", theta]
     goal: {x: ["-b/2", "b/2"], y: [-3.7, -2.2], yaw: "-pi/2", yaw_tol: 0.35}
@@ -123,7 +123,8 @@ class PolygonPiece:
 
 @dataclass(frozen=True)
 class DiscPiece:
-    """A disc obstacle (a pin) with expressions for its centre and radius."""
+    """A circle obstacle (a pin; ``circle:`` as in a scene file, or ``disc:``) with expressions
+    for its centre and radius."""
 
     label: str
     centre: tuple[Expression, Expression]
@@ -428,21 +429,28 @@ def _pair(value: Any, field_name: str, known: tuple[str, ...]) -> tuple[Expressi
     )
 
 
+CIRCLE_KEYS = ("circle", "disc")  # a scene file's word first; "disc" kept for fig1.yaml
+
+
 def _pieces(spec: Any, prefix: str, known: tuple[str, ...]) -> tuple[Piece, ...]:
+    """The obstacles, in a scene file's words: ``{polygon: [[x, y], ...]}`` (convex) or
+    ``{circle: {centre: [x, y], radius: r}}`` (``disc:`` is accepted for ``circle:``), each
+    with an optional ``label``."""
     field_name = f"{prefix}pieces"
     if not isinstance(spec, list) or not spec:
         raise FamilyError(
-            f"{field_name}: expected a non-empty list of {{polygon: ...}} or {{disc: ...}}"
+            f"{field_name}: expected a non-empty list of {{polygon: ...}} or {{circle: ...}}"
         )
     if len(spec) > MAX_OBSTACLES:
         raise FamilyError(f"{field_name}: {len(spec)} pieces; at most {MAX_OBSTACLES} are allowed")
     pieces: list[Piece] = []
     for i, item in enumerate(spec):
         where = f"{field_name}[{i}]"
-        item = mapping_field(item, where, {"polygon", "disc", "label"})
+        item = mapping_field(item, where, {"polygon", *CIRCLE_KEYS, "label"})
         label = name_field(item.get("label", where), f"{where}.label")
-        if ("polygon" in item) == ("disc" in item):
-            raise FamilyError(f"{where}: give exactly one of 'polygon' or 'disc'")
+        shapes = [k for k in ("polygon", *CIRCLE_KEYS) if k in item]
+        if len(shapes) != 1:
+            raise FamilyError(f"{where}: give exactly one of 'polygon' or 'circle'")
         if "polygon" in item:
             points = item["polygon"]
             if not isinstance(points, list) or not 3 <= len(points) <= MAX_VERTICES:
@@ -453,11 +461,12 @@ def _pieces(spec: Any, prefix: str, known: tuple[str, ...]) -> tuple[Piece, ...]
             vertices = tuple(_pair(p, f"{where}.polygon[{k}]", known) for k, p in enumerate(points))
             pieces.append(PolygonPiece(label, vertices))
         else:
-            disc = mapping_field(item["disc"], f"{where}.disc", {"centre", "radius"})
-            if "centre" not in disc or "radius" not in disc:
-                raise FamilyError(f"{where}.disc: needs 'centre' and 'radius'")
-            centre = _pair(disc["centre"], f"{where}.disc.centre", known)
-            radius = compile_expression(disc["radius"], f"{where}.disc.radius", known)
+            key = f"{where}.{shapes[0]}"
+            circle = mapping_field(item[shapes[0]], key, {"centre", "radius"})
+            if "centre" not in circle or "radius" not in circle:
+                raise FamilyError(f"{key}: needs 'centre' and 'radius'")
+            centre = _pair(circle["centre"], f"{key}.centre", known)
+            radius = compile_expression(circle["radius"], f"{key}.radius", known)
             pieces.append(DiscPiece(label, centre, radius))
     return tuple(pieces)
 

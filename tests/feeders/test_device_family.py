@@ -264,6 +264,18 @@ def test_its_box_is_sampled_by_halton() -> None:
     assert np.all((points >= low) & (points <= high))
 
 
+def test_a_pin_is_a_circle_as_in_a_scene_file_and_disc_is_the_same() -> None:
+    """One vocabulary with scene files (``circle: {centre, radius}``); ``disc:``, which
+    fig1.yaml uses, is read the same way."""
+    written = copy.deepcopy(SQUARE_CUP["pieces"])
+    written[3] = {"label": "pin", "circle": written[3]["disc"]}
+    by_circle = family_from_dict(cup(pieces=written)).build([3.0, 1.0])
+    by_disc = family_from_dict(cup()).build([3.0, 1.0])
+    assert np.array_equal(by_circle.obstacles.circles, by_disc.obstacles.circles)
+    assert by_circle.obstacles.circles.tolist() == [[0.0, 3.0, 0.25]]
+    assert by_circle.obstacles.labels == by_disc.obstacles.labels
+
+
 # --- refused at load ----------------------------------------------------------------------
 
 
@@ -293,7 +305,13 @@ def test_a_family_whose_default_cannot_be_built_is_refused_at_load() -> None:
         ({"parameters": {"w": {"low": 0, "high": 1, "default": 2}}}, "parameters.w.default"),
         ({"parameters": {"w": {"low": 0, "high": 1}}}, "parameters.w.default is required"),
         ({"pieces": [{"polygon": [[0, 0], [1, 0]]}]}, "pieces[0].polygon: expected a list"),
-        ({"pieces": [{"circle": {"centre": [0, 0], "radius": 1}}]}, "unknown key"),
+        (
+            {"pieces": [{"circle": {"centre": [0, 0], "radius": 1}, "disc": {}}]},
+            "pieces[0]: give exactly one of 'polygon' or 'circle'",
+        ),
+        ({"pieces": [{"circle": {"centre": [0, 1], "radius": "q"}}]}, "pieces[0].circle.radius"),
+        ({"pieces": [{"circle": {"centre": [0, 1]}}]}, "pieces[0].circle: needs 'centre'"),
+        ({"pieces": [{"sphere": {"centre": [0, 0], "radius": 1}}]}, "unknown key"),
         ({"pieces": []}, "pieces: expected a non-empty list"),
         ({"colour": "red"}, "unknown key"),
         ({"friction": 20}, "friction"),
