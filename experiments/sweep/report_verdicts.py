@@ -29,10 +29,11 @@ from experiments.report_kit.cells import DASH, cell, interval
 from experiments.report_kit.comparison_section import comparison_html
 from experiments.report_kit.page import figure_html, html_table
 from experiments.report_kit.verdict_section import (
-    OTHER_COLOUR,
-    OUTCOME_COLOURS,
     design_verdict_html,
+    outcome_colour,
+    outcome_order,
     strip_name,
+    success_classes,
 )
 from experiments.sweep.report_figures import MAX_BEST_DRAWN
 from feeders.feeder import ORIENTATIONS
@@ -132,21 +133,23 @@ def _strip(
 def transitions_plot(summary: dict, best: list[dict]) -> Figure:
     """Per best design and entry orientation, a bar of its drops split by where they ended,
     each part labelled with its count; the legend names every outcome drawn."""
-    rows: list[tuple[str, dict[str, int]]] = []
+    rows: list[tuple[str, dict[str, int], tuple[str, ...]]] = []
     for entry in best:
         matrix = entry["verdict"].get("transitions") or {}
+        success = success_classes(entry["verdict"])
         for orientation in entries_shown(summary):
             label = f"design {entry['design_id']}, {orientation.replace('_', ' ')}"
-            rows.append((label, dict(matrix.get(orientation) or {})))
+            rows.append((label, dict(matrix.get(orientation) or {}), success))
     fig, ax = plt.subplots(figsize=(9.5, 0.45 * len(rows) + 1.6))
     seen: set[str] = set()
-    widest = max([sum(c.values()) for _, c in rows] + [1])
-    for y, (_, counts) in enumerate(rows):
+    widest = max([sum(c.values()) for _, c, _ in rows] + [1])
+    for y, (_, counts, success) in enumerate(rows):
         left = 0.0
-        for outcome, n in sorted(counts.items(), key=lambda kv: _outcome_rank(kv[0])):
+        for outcome in outcome_order({"": counts}, success):
+            n = counts[outcome]
             if n <= 0:
                 continue
-            colour = OUTCOME_COLOURS.get(outcome, OTHER_COLOUR)
+            colour = outcome_colour(outcome, success)
             ax.barh(
                 y,
                 n,
@@ -159,7 +162,7 @@ def transitions_plot(summary: dict, best: list[dict]) -> Figure:
                 ax.text(left + n / 2, y, str(n), ha="center", va="center", fontsize=9, color="w")
             seen.add(outcome)
             left += n
-    ax.set_yticks(range(len(rows)), [label for label, _ in rows], fontsize=9)
+    ax.set_yticks(range(len(rows)), [label for label, _, _ in rows], fontsize=9)
     ax.invert_yaxis()
     ax.set_xlim(0.0, widest)
     ax.set_xlabel("drops (perturbed, from this entry)")
@@ -168,11 +171,6 @@ def transitions_plot(summary: dict, best: list[dict]) -> Figure:
     )
     ax.legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.0, 1.0), title="ended")
     return fig
-
-
-def _outcome_rank(outcome: str) -> int:
-    order = list(OUTCOME_COLOURS)
-    return order.index(outcome) if outcome in order else len(order)
 
 
 def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
