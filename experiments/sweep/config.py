@@ -58,15 +58,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from experiments.config_files import resolve_config
+from experiments.family_config import family_of_text, read_family_field, text_digest
 from experiments.names import LEVEL_NAMES, NECESSARY, PASSIVE, PLANNER_NAMES, RUNG_NAMES, SCREEN
-from experiments.sweep.family import (
-    column_problem,
-    family_file,
-    family_of_text,
-    packaged_families,
-    text_digest,
-)
-from feeders.device_family import FamilyError
+from experiments.sweep.family import column_problem
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -329,24 +323,7 @@ def config_from_dict(data: Any, name: str = "sweep", base: str | Path = ".") -> 
 def _family_field(value: Any, base: Path) -> tuple[str, str]:
     """The ``family`` field: the family file's absolute path and text, the family checked
     (it reads, its parameters can name results columns, it has two entries)."""
-    if not isinstance(value, str) or not value:
-        raise ConfigError(
-            f"family = {shown(repr(value))}; allowed: a packaged family's name "
-            f"({', '.join(packaged_families())}) or a family file"
-        )
-    path = family_file(value, base)
-    if path is None:
-        raise ConfigError(
-            f"family = '{shown(value)}' is neither a file (relative to {shown(base)}) nor a "
-            f"packaged family; packaged families: {', '.join(packaged_families())}"
-        )
-    try:
-        text = path.read_text(encoding="utf-8")
-        family = family_of_text(text, path.stem)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"family: {shown(path)} cannot be read ({exc})") from None
-    except FamilyError as exc:
-        raise ConfigError(f"family: {shown(path)}: {exc}") from None
+    path, text, family = read_family_field(value, base, ConfigError)
     problem = column_problem(family)
     if problem:
         raise ConfigError(f"family: {shown(path)}: {problem}")

@@ -22,8 +22,8 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 
+from experiments.family_config import family_of_text
 from experiments.names import DROP_RUNGS, NECESSARY, PASSIVE, SCREEN
-from experiments.sweep.family import family_of_text
 from experiments.sweep.results_db import SAMPLED_LEVELS
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder

@@ -38,10 +38,10 @@ import numpy as np
 
 from experiments.executors.cluster import run_dask
 from experiments.executors.local import LocalPool
+from experiments.family_config import family_record
 from experiments.names import PASSIVE
 from experiments.sweep import results_db
 from experiments.sweep.config import Rung, SweepConfig
-from experiments.sweep.family import family_record
 from experiments.sweep.job import SweepJob, evaluate_design, sweep_job, warm_up
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES
 from feeders.halton import halton_points

@@ -22,10 +22,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from experiments.family_config import family_of_text
 from experiments.report_kit.comparison_section import OVERLAY_PREFIX, comparison_figures
 from experiments.report_kit.margins_section import MARGINS, margins_figures
 from experiments.report_kit.verdict_section import STRIP_PREFIX
-from experiments.sweep.family import family_of_text
 from experiments.sweep.report_figures import (
     best_figure,
     feasible_set_figure,

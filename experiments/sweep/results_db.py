@@ -5,7 +5,7 @@ Tables (one row per ...):
 - ``meta`` (key, value): ``config`` (the config as JSON), ``results_key`` (its digest: a
   database belongs to one config), ``created``.
 - ``meta`` of a device family's sweep (issue 24) also holds ``family``: the family as JSON
-  (:func:`experiments.sweep.family.family_record`: name, parameters, box, entries, the file's
+  (:func:`experiments.family_config.family_record`: name, parameters, box, entries, the file's
   text), so a report rebuilds its devices from the database alone.
 - ``designs``: a Halton design: ``design_id`` (index in the sequence), ``holdout`` (1 if it
   climbs every rung to measure the pruning), the 12 parameters as columns (Table 2's names;
@@ -288,7 +288,7 @@ def _family_columns(
 
 def stored_family(db: sqlite3.Connection) -> dict[str, Any] | None:
     """The device family a results database belongs to
-    (:func:`experiments.sweep.family.family_record`), or None: the 12-parameter feeder's."""
+    (:func:`experiments.family_config.family_record`), or None: the 12-parameter feeder's."""
     row = db.execute("SELECT value FROM meta WHERE key = 'family'").fetchone()
     return None if row is None else json.loads(row[0])
 
@@ -420,7 +420,7 @@ def claim(
     family: dict[str, Any] | None = None,
 ) -> None:
     """Tie the database to a config and its device family (``family``:
-    :func:`experiments.sweep.family.family_record`; None: the 12-parameter feeder); a
+    :func:`experiments.family_config.family_record`; None: the 12-parameter feeder); a
     database of another config raises :class:`ResultsMismatch` (its results are not mixed
     with this config's), naming the field when it is the family or its parameters."""
     row = db.execute("SELECT value FROM meta WHERE key = 'results_key'").fetchone()

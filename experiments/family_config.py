@@ -1,0 +1,99 @@
+"""A config's device family (issue 24): where its file is, and the family as plain data.
+
+A job's config (the sweep's, the optimiser's) may name a device family
+(:mod:`feeders.device_family`) with ``family:``: a family packaged with partfeeder by name
+(``fig1``) or a YAML file, its path relative to the config file's folder. The config keeps the
+file's absolute path and its text; the text is what travels in every job (a Dask worker on
+another machine has no such file) and what a job's database stores, so a report rebuilds the
+family's devices from the database alone. Shared by the jobs: a job never imports a sibling
+job's internals.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from importlib.resources import files
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from feeders.device_family import DeviceFamily, FamilyError, family_from_dict
+from feeders.fields import FieldError, shown
+
+PACKAGED_FOLDER = "families"  # feeders/families/<name>.yaml, package data of the wheel
+
+
+def packaged_families() -> list[str]:
+    """The names of the families packaged with partfeeder."""
+    found = files("feeders").joinpath(PACKAGED_FOLDER).iterdir()
+    return sorted(e.name[: -len(".yaml")] for e in found if e.name.endswith(".yaml"))
+
+
+def family_file(given: str, base: Path) -> Path | None:
+    """The family file ``given`` names: a file (relative to ``base``, the config's folder), or
+    a family packaged under that name (``fig1`` or ``fig1.yaml``); None when it is neither."""
+    path = Path(given).expanduser()
+    path = path if path.is_absolute() else base / path
+    if path.is_file():
+        return path.resolve()
+    name = given[: -len(".yaml")] if given.endswith(".yaml") else given
+    if "/" not in given and name in packaged_families():
+        return Path(str(files("feeders").joinpath(PACKAGED_FOLDER, f"{name}.yaml"))).resolve()
+    return None
+
+
+def family_of_text(text: str, name: str) -> DeviceFamily:
+    """The family written in ``text`` (a family file's YAML), named ``name`` unless it names
+    itself; :class:`FamilyError` naming the field."""
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        raise FamilyError(f"not valid YAML ({str(exc).splitlines()[0]})") from None
+    return family_from_dict(data, name=name)
+
+
+def read_family_field(
+    value: Any, base: Path, error: type[FieldError]
+) -> tuple[str, str, DeviceFamily]:
+    """A config's ``family`` field: the family file's absolute path, its text and the family
+    (checked: it reads and builds its default). ``error`` (the config's own error class) is
+    raised with one line naming the field and what is allowed."""
+    if not isinstance(value, str) or not value:
+        raise error(
+            f"family = {shown(repr(value))}; allowed: a packaged family's name "
+            f"({', '.join(packaged_families())}) or a family file"
+        )
+    path = family_file(value, base)
+    if path is None:
+        raise error(
+            f"family = '{shown(value)}' is neither a file (relative to {shown(base)}) nor a "
+            f"packaged family; packaged families: {', '.join(packaged_families())}"
+        )
+    try:
+        text = path.read_text(encoding="utf-8")
+        family = family_of_text(text, path.stem)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise error(f"family: {shown(path)} cannot be read ({exc})") from None
+    except FamilyError as exc:
+        raise error(f"family: {shown(path)}: {exc}") from None
+    return str(path), text, family
+
+
+def family_record(family: DeviceFamily, text: str) -> dict[str, Any]:
+    """What a job's database stores of the family (plain data): its name, parameter names,
+    box (``low``, ``high``), entry names in the file's order and the file's text."""
+    low, high = family.bounds()
+    return {
+        "name": family.name,
+        "parameters": list(family.vector_names),
+        "low": [float(v) for v in low],
+        "high": [float(v) for v in high],
+        "entries": [name for name, _ in family.entries],
+        "yaml": text,
+    }
+
+
+def text_digest(text: str) -> str:
+    """A digest of a family file's text, for a job's results key."""
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
