@@ -19,7 +19,8 @@ part's area would not be the area of its shape; and together they must form one 
 A simple polygon that is not convex (an *outline*) is split into convex pieces here
 (:func:`split_outline`: ear clipping, then Hertel-Mehlhorn merging of triangles).
 
-Not wired in yet: the levels and kernels still take the :class:`~feeders.part.Peg`.
+Every level takes such a part (:mod:`feeders.part_shape`, :class:`validity.scene_arrays.PartArrays`:
+its pieces as convex polygons and discs, its seams no surface).
 """
 
 from __future__ import annotations
@@ -427,15 +428,16 @@ def _overlap(a: Any, b: Any, ra: float, rb: float, gap: float, tol: float) -> bo
 
 # --- YAML ---------------------------------------------------------------------------------
 
-_PIECE_KEYS = {"polygon", "outline", "disc", "density"}
+_PIECE_KEYS = {"polygon", "outline", "circle", "disc", "density"}  # 'disc': 'circle' as before
 
 
 def part_from_dict(data: Any, prefix: str = "part.") -> CompositePart:
     """The part described by a YAML-shaped mapping: ``pieces`` (a list of ``{polygon: [[x, y],
     ...], density: d}`` for a convex polygon, ``{outline: [...], density: d}`` for any simple
-    polygon, split into convex pieces, or ``{disc: {centre: [x, y], radius: r}, density: d}``),
-    or ``outline`` with ``density`` for a uniform simple polygon. Errors are one line naming
-    the field with ``prefix`` before it (:class:`CompositePartError`)."""
+    polygon, split into convex pieces, or ``{circle: {centre: [x, y], radius: r}, density: d}``
+    for a disc, written as a scene file's circles; ``disc:`` is taken for it too), or
+    ``outline`` with ``density`` for a uniform simple polygon. Errors are one line naming the
+    field with ``prefix`` before it (:class:`CompositePartError`)."""
     where = prefix.rstrip(".") or "part"
     with field_errors_as(CompositePartError):
         data = mapping_field(data, where, {"pieces", "outline", "density"})
@@ -460,20 +462,21 @@ def part_from_dict(data: Any, prefix: str = "part.") -> CompositePart:
         polygons, poly_rho, poly_labels, discs, disc_rho, disc_labels = [], [], [], [], [], []
         for item, name in zip(items, names, strict=True):
             item = mapping_field(item, name, _PIECE_KEYS)
-            shapes = sorted({"polygon", "outline", "disc"} & set(item))
+            shapes = sorted({"polygon", "outline", "circle", "disc"} & set(item))
             if len(shapes) != 1:
                 raise CompositePartError(
-                    f"{name}: give exactly one of 'polygon', 'outline' or 'disc', and 'density'"
+                    f"{name}: give exactly one of 'polygon', 'outline' or 'circle', and 'density'"
                 )
             if "density" not in item:
                 raise CompositePartError(f"{name}.density is required")
             rho = number_field(item["density"], f"{name}.density", *DENSITY_RANGE)
-            if "disc" in item:
-                disc = mapping_field(item["disc"], f"{name}.disc", {"centre", "radius"})
+            if shapes[0] in ("circle", "disc"):
+                key = f"{name}.{shapes[0]}"
+                disc = mapping_field(item[shapes[0]], key, {"centre", "radius"})
                 if "centre" not in disc or "radius" not in disc:
-                    raise CompositePartError(f"{name}.disc: needs 'centre' and 'radius'")
-                cx, cy = numbers_field(disc["centre"], f"{name}.disc.centre", 2)
-                r = number_field(disc["radius"], f"{name}.disc.radius", *RADIUS_RANGE)
+                    raise CompositePartError(f"{key}: needs 'centre' and 'radius'")
+                cx, cy = numbers_field(disc["centre"], f"{key}.centre", 2)
+                r = number_field(disc["radius"], f"{key}.radius", *RADIUS_RANGE)
                 discs.append((cx, cy, r))
                 disc_rho.append(rho)
                 disc_labels.append(name)
@@ -484,13 +487,18 @@ def part_from_dict(data: Any, prefix: str = "part.") -> CompositePart:
             polygons += pieces
             poly_rho += [rho] * len(pieces)
             poly_labels += [name] * len(pieces)
-        return CompositePart(
-            tuple(polygons),
-            tuple(poly_rho),
-            np.array(discs, dtype=float).reshape(-1, 3),
-            tuple(disc_rho),
-            tuple(poly_labels + disc_labels),
-        )
+        try:
+            return CompositePart(
+                tuple(polygons),
+                tuple(poly_rho),
+                np.array(discs, dtype=float).reshape(-1, 3),
+                tuple(disc_rho),
+                tuple(poly_labels + disc_labels),
+            )
+        except CompositePartError as exc:
+            if str(exc).startswith("pieces:"):  # the whole part's fault: name its field
+                raise CompositePartError(f"{prefix}{exc}") from None
+            raise
 
 
 def _yaml_points(value: Any, field_name: str) -> np.ndarray:

@@ -353,7 +353,7 @@ BOWTIE = [[0, 0], [1, 1], [1, 0], [0, 1]]
                     {"disc": {"centre": [1, 1], "radius": 0.2}, "density": 1},
                 ]
             },
-            r"pieces: they form 2 separate bodies",
+            r"^part\.pieces: they form 2 separate bodies",
         ),
         (
             {"pieces": [{"polygon": RECT, "density": 1, "colour": "red"}]},
@@ -546,3 +546,17 @@ def test_hull_contains_the_discs():
     hull = shapely.Polygon(part.convex_hull())
     for x, y, r in part.body_discs():
         assert hull.buffer(1e-12).contains(shapely.Point(x, y).buffer(r, 256))
+
+
+def test_a_pieces_disc_is_written_circle_as_in_a_scene_file():
+    """``circle:`` (a scene file's word for a disc) and ``disc:`` read the same part; both at
+    once are refused naming the piece."""
+    plate = [[0, 0], [2, 0], [2, 0.3], [0, 0.3]]
+    disc = {"centre": [1, 0.5], "radius": 0.2}
+    a = part_from_dict(
+        {"pieces": [{"polygon": plate, "density": 1}, {"circle": disc, "density": 3}]}
+    )
+    b = part_from_dict({"pieces": [{"polygon": plate, "density": 1}, {"disc": disc, "density": 3}]})
+    assert (a.mass, a.inertia, tuple(a.com)) == (b.mass, b.inertia, tuple(b.com))
+    with pytest.raises(CompositePartError, match=r"part\.pieces\[0\]: give exactly one of"):
+        part_from_dict({"pieces": [{"circle": disc, "disc": disc, "density": 1}]})
