@@ -45,6 +45,7 @@ import keyword
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from importlib.resources import files
 from pathlib import Path
 from typing import Any, TypeAlias
 
@@ -660,6 +661,25 @@ def _family(data: Any, prefix: str, name: str) -> DeviceFamily:
         inputs=env["inputs"],
         orientations=classes,
     )
+
+
+PACKAGED_FOLDER = "families"  # feeders/families/<name>.yaml, package data of the wheel
+
+
+def packaged_families() -> list[str]:
+    """The names of the families packaged with partfeeder (``fig1``, ``fig1-cup``, ...)."""
+    found = files("feeders").joinpath(PACKAGED_FOLDER).iterdir()
+    return sorted(e.name[: -len(".yaml")] for e in found if e.name.endswith(".yaml"))
+
+
+def packaged_family(name: str) -> Path | None:
+    """The file of the family packaged as ``name`` (``fig1-cup`` or ``fig1-cup.yaml``), read
+    through importlib.resources so that it is found from an installed wheel in any directory;
+    None when there is no such family."""
+    name = name[: -len(".yaml")] if name.endswith(".yaml") else name
+    if name not in packaged_families():
+        return None
+    return Path(str(files("feeders").joinpath(PACKAGED_FOLDER, f"{name}.yaml")))
 
 
 def load_family(path: str | Path) -> DeviceFamily:

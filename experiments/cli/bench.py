@@ -5,7 +5,8 @@ or, with ``--agreement``, the same perturbed feeder drops in partfeeder, MuJoCo 
 how they agree (:mod:`experiments.bench.agreement`); or, with ``--trial``, the cost of one
 verdict trial and its parts (:mod:`experiments.bench.trial_cost`); or, with ``--verdict``, the
 cost of deciding designs by the full verdict alone and by the screen then the verdict
-(:mod:`experiments.bench.verdict_cost`)."""
+(:mod:`experiments.bench.verdict_cost`); or, with ``--part``, a step's cost for the cup (three
+pieces) against the peg (:mod:`experiments.bench.part_cost`)."""
 
 from __future__ import annotations
 
@@ -67,6 +68,17 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         "run, with their ratios, as text (no files)",
     )
     bench.add_argument(
+        "--part",
+        type=int,
+        nargs="?",
+        const=50,
+        default=None,
+        metavar="N",
+        help="instead: median us per dynamic step of the cup (three pieces) through the "
+        "fig1-cup device and of the peg through table3 over N verdict trials each (default 50), "
+        "and their ratio, as text (no files)",
+    )
+    bench.add_argument(
         "--halton-seed",
         type=int,
         default=0,
@@ -117,6 +129,17 @@ def _detail(args: argparse.Namespace, repeats: int) -> int:
 
     results = run_benchmarks(repeats=repeats, seed=args.seed, quick=args.quick)
     print(json.dumps(results, indent=2) if args.json else format_report(results))
+    return 0
+
+
+def _part(args: argparse.Namespace) -> int:
+    """``--part N``: a step's cost for a part of several pieces against the peg (issue 24)."""
+    check_count(args.part, "--part", 100_000)
+    check_seed(args.seed)
+    from experiments.bench.part_cost import format_part_cost, part_cost
+
+    results = part_cost(args.part, args.seed)
+    print(json.dumps(results, indent=2) if args.json else format_part_cost(results))
     return 0
 
 
@@ -214,6 +237,8 @@ def run(args: argparse.Namespace) -> int:
         return _agreement(args)
     if args.trial is not None:
         return _trial(args)
+    if args.part is not None:
+        return _part(args)
     if args.verdict is not None:
         return _verdict(args)
     repeats = args.repeats if args.repeats is not None else (2 if args.quick else 5)
