@@ -7,6 +7,7 @@ needs them) and writes one file; a figure without data says so instead of failin
 from __future__ import annotations
 
 import math
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -122,7 +123,8 @@ def feasible_set_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
         high = np.array([TABLE2_BOUNDS[n][1] for n in PARAMETER_NAMES])
     unit = (values - low) / (high - low)
     x = np.arange(len(names))
-    fig, ax = plt.subplots(figsize=(max(6.0, 10.0 * len(names) / 12), 5.4))
+    width = max(8.0, 10.0 * len(names) / 12)  # inches; the legend takes about a third
+    fig, ax = plt.subplots(figsize=(width, 5.4))
     for k in range(len(names)):
         ax.plot([k, k], [0.0, 1.0], color="#888888", lw=0.8, zorder=1)
         for y, bound, va in ((-0.05, low[k], "top"), (1.05, high[k], "bottom")):
@@ -134,7 +136,14 @@ def feasible_set_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
                 ax.plot(x, unit[row], color=colours[k], lw=0.8, alpha=0.7, zorder=2)
             else:
                 ax.plot(x, unit[row], color=colours[k], lw=2.4, marker="o", ms=6, zorder=3 + k)
-    ax.set_xticks(x, names, fontsize=10)
+    long_names = max(len(n) for n in names) > 5  # a family's: slanted, clear of each other
+    ax.set_xticks(
+        x,
+        names,
+        fontsize=10,
+        rotation=30 if long_names else 0,
+        ha="right" if long_names else "center",
+    )
     ax.set_xlim(-0.4, len(names) - 0.6)
     ax.set_ylim(-0.14, 1.14)
     ax.set_yticks([0.0, 0.5, 1.0], ["low", "middle", "high"], fontsize=9)
@@ -170,7 +179,11 @@ def feasible_set_plot(summary: dict, ladder: list[str], data: dict) -> Figure:
         bbox_to_anchor=(1.0, 1.0),
     )
     ax.set_title(
-        f"{summary.get('name', 'sweep')}: {feasible_set_headline(passed, ladder)}", fontsize=11
+        textwrap.fill(
+            f"{summary.get('name', 'sweep')}: {feasible_set_headline(passed, ladder)}",
+            int(6.5 * width),
+        ),
+        fontsize=11,
     )
     return fig
 
@@ -303,7 +316,8 @@ def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
     with their confidence intervals as error bars; an undefined one says why."""
     rows = list(summary.get("pruning") or [])
     truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
-    fig, ax = plt.subplots(figsize=(min(10.0, max(5.0, 2.2 * len(rows) + 2.0)), 4.2))
+    width = min(10.0, max(5.0, 2.2 * len(rows) + 2.0))  # inches
+    fig, ax = plt.subplots(figsize=(width, 4.2))
     width = 0.36
     bars = ((-width / 2, "precision", "#6a51a3"), (width / 2, "recall", "#41ab5d"))
     why = {
@@ -337,7 +351,7 @@ def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
     ax.set_ylim(0, 1.25)
     ax.set_yticks(np.linspace(0.0, 1.0, 6))
     ax.set_ylabel(f"fraction, vs {truth} (95% CI)")
-    ax.set_title(pruning_title(summary, ladder), fontsize=11)
+    ax.set_title(textwrap.fill(pruning_title(summary, ladder), int(8 * width)), fontsize=11)
     ax.legend(
         handles=[Patch(color=c, label=key) for _, key, c in bars],
         fontsize=9,
