@@ -11,11 +11,24 @@ from planners.spaces import state_codec
 YAW_WEIGHT = 0.5  # length units per radian: SE2's own weighting of orientation in OMPL
 
 
+def goal_sample(goal: Goal, rng: np.random.Generator) -> tuple[float, float, float]:
+    """A pose ``(x, y, yaw)`` the goal accepts, uniform in its box and over its acceptable
+    yaws: a window chosen in proportion to its width when there are several (issue 24: a goal
+    of more than one orientation), then uniform within it."""
+    x = rng.uniform(goal.x_min, goal.x_max)
+    y = rng.uniform(goal.y_min, goal.y_max)
+    centre, tol = goal.yaw, goal.yaw_tol
+    if goal.more_yaws:
+        widths = np.array([w for _, w in goal.windows])
+        centre, tol = goal.windows[rng.choice(len(widths), p=widths / widths.sum())]
+    return float(x), float(y), float(centre + rng.uniform(-tol, tol))
+
+
 class GoalBox(ob.GoalSampleableRegion):
     """Centre of mass in the goal box and yaw within tolerance; velocity is free.
 
     ``distanceGoal`` = distance to the box + ``YAW_WEIGHT`` * yaw excess; 0 inside.
-    Goal samples are uniform in the box and the yaw tolerance, drawn from ``rng``.
+    Goal samples are :func:`goal_sample`'s, drawn from ``rng``.
     """
 
     def __init__(
@@ -34,10 +47,7 @@ class GoalBox(ob.GoalSampleableRegion):
         return g.position_gap(x, y) + YAW_WEIGHT * g.yaw_gap(yaw)
 
     def sampleGoal(self, state) -> None:
-        g = self.goal
-        x = self.rng.uniform(g.x_min, g.x_max)
-        y = self.rng.uniform(g.y_min, g.y_max)
-        yaw = g.yaw + self.rng.uniform(-g.yaw_tol, g.yaw_tol)
+        x, y, yaw = goal_sample(self.goal, self.rng)
         self.write(state, (x, y, yaw, 0.0, 0.0, 0.0)[: self.state_dim])
 
     def maxSampleCount(self) -> int:
