@@ -13,10 +13,12 @@ and a made value may leave it (a design at the box's edge made 1% over). The fam
 and the build's checks decide; a made device they refuse is a failed trial from every entry,
 as an unbuildable toleranced feeder is (:data:`experiments.drop.verdict.UNBUILDABLE`).
 
-The outcome classes (:func:`experiments.drop.outcomes.classify`) name Fig. 1's landmarks only
-for a scene with a 12-parameter design; a family's scene has none, so a drop is "heavy end
-down" (in the goal), "heavy end up" (below the goal's top, not in it), "stopped in the cavity"
-(at rest anywhere else), "still moving at t_max", "left the bounds" or a simulation fault.
+The outcome classes (:func:`experiments.drop.outcomes.classify`) are named by the family's
+orientations (``orientations:``; the peg's "heavy end down" / "heavy end up" when it names
+none): a drop in the goal is the goal's class, one below the goal's top the class of its final
+yaw, else "stopped in the cavity" (at rest anywhere else), "still moving at t_max", "left the
+bounds" or a simulation fault. Fig. 1's landmarks (pin, lip, funnel) name outcomes only for
+the 12-parameter feeder.
 """
 
 from __future__ import annotations
