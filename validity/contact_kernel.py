@@ -54,7 +54,7 @@ import math
 import numpy as np
 from numba import njit
 
-from validity.geometry_kernel import _box_gap, _box_of, _edge_normal
+from validity.geometry_kernel import _box_gap, _box_of, _edge_normal, polygon_aabbs
 
 MAX_CONTACTS = 12  # a planar convex part touches at most a few features; deeper ones are kept
 _TINY = 1e-14
@@ -551,29 +551,12 @@ def find_contacts(
 
 
 @njit(cache=True)
-def _inside_part(world: np.ndarray, wcounts: np.ndarray, px: float, py: float) -> bool:
-    """p strictly inside (by more than round-off) one of the placed part's polygon pieces."""
-    for q in range(world.shape[0]):
-        nb = wcounts[q]
-        inside = True
-        for i in range(nb):
-            j = (i + 1) % nb
-            ex, ey = world[q, j, 0] - world[q, i, 0], world[q, j, 1] - world[q, i, 1]
-            cross = ey * (px - world[q, i, 0]) - ex * (py - world[q, i, 1])
-            if cross > -_TINY * (abs(ex) + abs(ey)) and ex * ex + ey * ey > _TINY * _TINY:
-                inside = False
-                break
-        if inside and nb >= 3:
-            return True
-    return False
-
-
-@njit(cache=True)
 def _disc_contacts(
     k: int,
     wdiscs: np.ndarray,
     world: np.ndarray,
     wcounts: np.ndarray,
+    wboxes: np.ndarray,
     verts: np.ndarray,
     counts: np.ndarray,
     aabbs: np.ndarray,
@@ -588,8 +571,9 @@ def _disc_contacts(
     :func:`find_contacts`'s for a polygon piece: a disc touches a polygon where its centre's
     nearest surface feature is (a centre inside the solid: its depth in the whole solid,
     :func:`solid_depth`), and a disc along the line of centres. The contact point is the
-    disc's point nearest the obstacle; one that lies inside another piece of the part is on no
-    surface of the part and is dropped."""
+    disc's point nearest the obstacle; one that lies inside a polygon piece of the part
+    (``world``, ``wcounts``, their boxes ``wboxes``) is on no surface of the part and is
+    dropped."""
     cx, cy, r = wdiscs[k, 0], wdiscs[k, 1], wdiscs[k, 2]
     clear = np.inf
     if _strictly_inside(verts, counts, aabbs, cx, cy):
@@ -608,7 +592,7 @@ def _disc_contacts(
             )
             d -= r
             px, py = cx - r * nx, cy - r * ny
-            if d < margin and not hidden and not _inside_part(world, wcounts, px, py):
+            if d < margin and not hidden and not _strictly_inside(world, wcounts, wboxes, px, py):
                 nc = _add(contacts, nc, d, nx, ny, px, py)
             else:
                 clear = min(clear, d)
@@ -621,7 +605,7 @@ def _disc_contacts(
             continue
         nx, ny = dx / dist, dy / dist
         px, py = cx - r * nx, cy - r * ny
-        if _inside_part(world, wcounts, px, py):
+        if _strictly_inside(world, wcounts, wboxes, px, py):
             clear = min(clear, d)
         else:
             nc = _add(contacts, nc, d, nx, ny, px, py)
@@ -667,12 +651,14 @@ def find_part_contacts(
             part_corners[q],
         )
         clear = min(clear, c)
+    wboxes = polygon_aabbs(world, wcounts) if wdiscs.shape[0] else np.empty((0, 4))
     for k in range(wdiscs.shape[0]):
         nc, c = _disc_contacts(
             k,
             wdiscs,
             world,
             wcounts,
+            wboxes,
             verts,
             counts,
             aabbs,
