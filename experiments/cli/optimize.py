@@ -1,8 +1,8 @@
 """``partfeeder optimize``: the paper's design optimisation (Eq. 10-11), made robust
 (:mod:`experiments.optimize`): from the best designs of a sweep (``--from``) or the config's
-presets, derivative-free methods search Table 2's box for the design that turns both entries
-heavy end down under perturbation, as fast as possible. Resumes when started again in the
-same directory."""
+presets, derivative-free methods search Table 2's box (a device family's box, with the
+config's ``family:``) for the design that turns both entries heavy end down (the family's goal)
+under perturbation, as fast as possible. Resumes when started again in the same directory."""
 
 from __future__ import annotations
 
@@ -10,13 +10,17 @@ import argparse
 import json
 import sys
 import time
+from contextlib import closing
 from pathlib import Path
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
 
-from experiments.cli.baseline import add_baseline_argument, baseline_of
+from experiments.cli.baseline import DEFAULT_BASELINE, add_baseline_argument, baseline_of
 from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, out_dir
 from experiments.names import EXECUTOR_NAMES
+
+if TYPE_CHECKING:
+    from experiments.optimize.config import OptimizeConfig
 
 DEFAULT_OUT = Path("optimize")
 
@@ -98,27 +102,123 @@ class OptimizeProgress:
             self.bar = None
 
 
-def sweep_best_designs(sweep: Path | None) -> list[dict]:
-    """The best designs of a sweep directory, by their passive verdict (its summary)."""
+def sweep_best_designs(sweep: Path | None, config: OptimizeConfig | None = None) -> list[dict]:
+    """The best designs of a sweep directory, by their passive verdict (its summary). The
+    sweep must design what ``config`` designs (the 12-parameter feeder, or the same device
+    family: the same file's text); else one line naming ``--from`` and ``family``. A
+    family's sweep may have no design that works (fig1-cup's 1,000 Halton designs: none), so
+    for a family the designs that work are followed, up to ``start.sweep_best``, by the
+    failing ones nearest to working (the largest fraction of trials succeeding from both
+    entries, then from the worse entry): starts for the optimiser to improve on."""
     if sweep is None:
         return []
     database = sweep / "results.sqlite"
     if not database.is_file():
         raise UsageError(f"--from '{sweep}': no results.sqlite there (is it a sweep directory?)")
+    from experiments.sweep import results_db
     from experiments.sweep.results_db import ResultsDamaged
     from experiments.sweep.summary import summarise
 
     try:
+        with closing(results_db.connect(database, readonly=True)) as db:
+            record = results_db.stored_family(db)
+            _check_same_design(sweep, record, config)
+            near = _nearest_failing(db) if record is not None else []
         best = summarise(database).get("best") or []
     except ResultsDamaged as exc:
         raise UsageError(f"--from: {exc}") from None
     ranked = [b for b in best if b.get("verdict")]
+    if config is not None and config.family is not None:
+        taken = {b["design_id"] for b in ranked}
+        ranked += [b for b in near if b["design_id"] not in taken]
+        ranked = ranked[: max(len(best), config.sweep_best)]
     if not ranked:
         raise UsageError(
             f"--from '{sweep}': no design of that sweep works by its passive verdict "
             "(a sweep with a passive rung gives them)"
         )
     return ranked
+
+
+def _check_same_design(
+    sweep: Path, record: dict[str, Any] | None, config: OptimizeConfig | None
+) -> None:
+    """Refuse a sweep of another device (another family, or the feeder for a family)."""
+    from experiments.family_config import text_digest
+
+    ours = None if config is None or config.family is None else config.family_yaml
+    if record is None and ours is None:
+        return
+    if record is not None and ours is not None and text_digest(record["yaml"]) == text_digest(ours):
+        return
+    assert config is not None or record is not None
+    theirs = (
+        "the 12-parameter feeder"
+        if record is None
+        else f"device family '{record['name']}' ({', '.join(record['parameters'])})"
+    )
+    if ours is None:
+        mine = "the 12-parameter feeder (no family:)"
+    else:
+        assert config is not None and config.family is not None
+        mine = f"family {Path(config.family).stem}"
+    raise UsageError(
+        f"--from '{sweep}': a sweep of {theirs}, and this config's family designs {mine}; "
+        "allowed: a sweep of the same device (the same family file, or both the feeder)"
+    )
+
+
+def _nearest_failing(db: Any) -> list[dict]:
+    """The sweep's designs with a passive verdict that does not work, nearest to working
+    first: the fraction of trials succeeding from both entries, then the worse entry's."""
+    from experiments.sweep import results_db
+
+    names = results_db.parameter_names(db)
+    columns = ", ".join(f'"{n}"' for n in names)
+    values = {
+        int(r[0]): [float(v) for v in r[1:]]
+        for r in db.execute(f"SELECT design_id, {columns} FROM designs")
+    }
+    rows = []
+    for d, verdict in results_db.verdicts(db).items():
+        if verdict.get("works") or d not in values:
+            continue
+        worse = min(per["p"] for per in verdict["orientations"].values())
+        rows.append(
+            (
+                (-verdict["both"]["p"], -worse, d),
+                {"design_id": d, "values": values[d], "verdict": verdict},
+            )
+        )
+    return [row for _, row in sorted(rows, key=lambda r: r[0])]
+
+
+def _baseline(text: str, config: OptimizeConfig) -> tuple[str, list[float]] | None:
+    """``--baseline`` for ``config``: the feeder's as :func:`baseline_of` reads it; with a
+    family, None (its default) when not given, ``default``, or the family's values in its
+    parameters' order."""
+    family = config.device_family()
+    if family is None:
+        return baseline_of(text)
+    if text in (DEFAULT_BASELINE, "default"):
+        return None
+    names = family.vector_names
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) != len(names) or not all(v == v and abs(v) != float("inf") for v in values):
+        raise UsageError(
+            f"--baseline = '{text}'; allowed with family {family.name}: default, or "
+            f"{len(names)} comma-separated numbers ({', '.join(names)})"
+        )
+    from feeders.feeder import DegenerateDesign
+
+    try:
+        family.build(values)
+    except DegenerateDesign as exc:
+        raise UsageError(f"--baseline = '{text}' cannot be built: {exc.reason}") from None
+    return "baseline", values
 
 
 def run(args: argparse.Namespace) -> int:
@@ -139,8 +239,8 @@ def run(args: argparse.Namespace) -> int:
         from experiments.executors.cluster import check_scheduler
 
         check_scheduler(args.scheduler)
-    baseline = baseline_of(args.baseline)
-    best = sweep_best_designs(args.sweep)
+    baseline = _baseline(args.baseline, config)
+    best = sweep_best_designs(args.sweep, config)
     if not config.presets and not best:
         raise UsageError(
             f"{args.config}: start.presets is empty and no --from SWEEP_DIR was given: "

@@ -14,6 +14,8 @@ passed.
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Sequence
 from typing import Any
 
 from experiments.drop.compare import paired_counts, parameter_differences
@@ -23,13 +25,24 @@ from feeders.design import DesignParameters
 from feeders.feeder import ORIENTATIONS
 
 
-def verdict_of_trials(trial_data: list[dict], target: float) -> Verdict:
+def verdict_of_trials(
+    trial_data: list[dict],
+    target: float,
+    orientations: Sequence[str] = ORIENTATIONS,
+    classes: tuple[tuple[str, ...], tuple[str, ...]] | None = None,
+) -> Verdict:
     """The verdict of stored trials (plain data, :func:`experiments.optimize.objective.
-    trial_to_dict`) against ``target``: a fixed sample, decided once on all of them."""
+    trial_to_dict`) against ``target``: a fixed sample, decided once on all of them;
+    ``orientations`` name the trials' entries and ``classes`` (the transition matrix's
+    columns and the goal's classes, :func:`experiments.drop.verdict.classes_of`; None: the
+    feeder's) their outcomes: a device family's are its own."""
     trials = tuple(trial_from_dict(t) for t in trial_data)
-    counts = [sum(t.success[k] for t in trials) for k in range(len(ORIENTATIONS))]
+    counts = [sum(t.success[k] for t in trials) for k in range(len(orientations))]
     decision = decide(counts, len(trials), target) if trials else "fails"
-    return Verdict(tuple(ORIENTATIONS), trials, target, decision, 0.0)
+    verdict = Verdict(tuple(orientations), trials, target, decision, 0.0)
+    if classes is None:
+        return verdict
+    return dataclasses.replace(verdict, classes=classes[0], success_classes=classes[1])
 
 
 def stored_comparison(

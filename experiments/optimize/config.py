@@ -5,7 +5,10 @@ Read from YAML with ``yaml.safe_load`` and validated field by field; an error na
 and its allowed range. Example (``experiments/configs/optimize.yaml``)::
 
     name: optimize
+    family: fig1-cup      # optional: a device family (issue 24), packaged by name or a file
+                          # relative to this one; absent: the paper's 12-parameter feeder
     feeder: {friction: 0.05, restitution: 0.3}   # the scene's environment, as a sweep's
+                          # (not with a family: its file holds its part, friction, inputs)
     objective:
       trials: 16          # K: fixed perturbation draws per evaluation (common to all designs)
       seed: 0             # of those draws
@@ -14,7 +17,8 @@ and its allowed range. Example (``experiments/configs/optimize.yaml``)::
       t_max: 10.0         # longest drop (s): Eq. 10's T is capped there
     perturbations: {position: 0.05, yaw: 0.05, speed: 0.05, friction: 0.2, tolerance: 0.01}
     start:
-      presets: [table3]   # named designs of the paper (feeders.design.PRESETS)
+      presets: [table3]   # named designs of the paper (feeders.design.PRESETS); with a
+                          # family: [default], the family's default vector
       sweep_best: 6       # with --from SWEEP_DIR: that sweep's best designs by their verdict
     methods:              # each run on the same budget of evaluations, once per seed
       - {method: differential-evolution, budget: 600, seeds: [0], population: 20}
@@ -27,7 +31,11 @@ and its allowed range. Example (``experiments/configs/optimize.yaml``)::
     workers: 2
     max_attempts: 2
 
-Everything is plain data, so a config travels to worker processes and Dask workers as is.
+With a family the design vector is the family's (its parameters, in its file's order, within
+its box) and the family must have two entries (the store's two entry columns hold them).
+
+Everything is plain data, so a config travels to worker processes and Dask workers as is (a
+family as its file's text).
 """
 
 from __future__ import annotations
@@ -36,10 +44,11 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from experiments.config_files import resolve_config
 from experiments.drop.perturbations import Perturbations
+from experiments.family_config import family_of_text, read_family_field, text_digest
 from experiments.names import OPTIMIZER_NAMES, PRESET_NAMES
 from feeders.fields import (
     FieldError,
@@ -53,6 +62,10 @@ from feeders.fields import (
 )
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
+
+FAMILY_DEFAULT = "default"  # start.presets' name of a family's default vector
 MAX_BUDGET = 1_000_000
 MAX_TRIALS = 10_000
 METHOD_STARTS = ("starts", "best")
@@ -109,11 +122,20 @@ class OptimizeConfig:
     final_candidates: int = 4
     workers: int = 2
     max_attempts: int = 2
+    family: str | None = None  # the family file's absolute path; None: the 12-parameter feeder
+    family_yaml: str = ""  # the family file's text, as read when the config was
+
+    def device_family(self) -> DeviceFamily | None:
+        """The config's device family (None: the 12-parameter feeder), read from its text."""
+        if self.family is None:
+            return None
+        return family_of_text(self.family_yaml, Path(self.family).stem)
 
     def to_dict(self) -> dict[str, Any]:
         """The config as the YAML document it came from (normalised; plain data)."""
         return {
             "name": self.name,
+            **({"family": self.family} if self.family is not None else {}),
             "feeder": dict(self.feeder),
             "objective": {
                 "trials": self.trials,
@@ -136,10 +158,12 @@ class OptimizeConfig:
         }
 
     def objective_key(self) -> str:
-        """A digest of what decides an evaluation's value (feeder, objective, perturbations):
-        the stored evaluations belong to one key."""
+        """A digest of what decides an evaluation's value (feeder or the family file's text,
+        objective, perturbations): the stored evaluations belong to one key."""
         data = self.to_dict()
         keep = {k: data[k] for k in ("feeder", "objective", "perturbations")}
+        if self.family is not None:  # what the family says, not where its file lies
+            keep["family"] = text_digest(self.family_yaml)
         return hashlib.sha256(json.dumps(keep, sort_keys=True).encode()).hexdigest()[:16]
 
 
@@ -174,18 +198,52 @@ def _method(spec: Any, field_name: str) -> Method:
     return Method(name, budget, seeds, population, start)
 
 
-def config_from_dict(data: Any, name: str = "optimize") -> OptimizeConfig:
-    """Validate a parsed YAML document; raises :class:`OptimizeConfigError` naming the field."""
+def config_from_dict(data: Any, name: str = "optimize", base: str | Path = ".") -> OptimizeConfig:
+    """Validate a parsed YAML document; raises :class:`OptimizeConfigError` naming the field.
+    A ``family`` file is found relative to ``base`` (the config file's folder)."""
     with field_errors_as(OptimizeConfigError):
-        return _config_from_dict(data, name)
+        return _config_from_dict(data, name, Path(base))
 
 
-def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
+def _family_field(value: Any, base: Path) -> tuple[str, str]:
+    """The ``family`` field: the family file's absolute path and text, the family checked (it
+    reads, builds its default, has the two entries the store's columns hold)."""
+    path, text, family = read_family_field(value, base, OptimizeConfigError)
+    entries = [n for n, _ in family.entries]
+    if len(entries) != 2:
+        raise OptimizeConfigError(
+            f"family: {shown(path)} has {len(entries)} entries {entries}; the optimiser needs 2 "
+            "(the evaluations' two entry columns)"
+        )
+    return path, text
+
+
+def _presets(start: dict[str, Any], family: str | None) -> list[str]:
+    """``start.presets``: the paper's designs by name, or with a family ``default``."""
+    allowed = [FAMILY_DEFAULT] if family is not None else list(PRESET_NAMES)
+    presets = start.get("presets", [allowed[0]] if family is not None else ["table3"])
+    if not isinstance(presets, list) or len(presets) > len(allowed):
+        raise OptimizeConfigError(
+            f"start.presets: expected a list of preset names, got {shown(repr(presets))}"
+        )
+    for i, preset in enumerate(presets):
+        if preset not in allowed:
+            allowed_text = (
+                f"allowed with family: {FAMILY_DEFAULT} (the family's default vector)"
+                if family is not None
+                else f"presets: {', '.join(allowed)}"
+            )
+            raise OptimizeConfigError(f"start.presets[{i}] = {shown(repr(preset))}; {allowed_text}")
+    return presets
+
+
+def _config_from_dict(data: Any, name: str, base: Path) -> OptimizeConfig:
     data = mapping_field(
         data,
         "config",
         {
             "name",
+            "family",
             "feeder",
             "objective",
             "perturbations",
@@ -196,7 +254,15 @@ def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
             "max_attempts",
         },
     )
+    family, family_yaml = None, ""
+    if "family" in data:
+        family, family_yaml = _family_field(data["family"], base)
     feeder = mapping_field(data.get("feeder", {}) or {}, "feeder", set(ENVIRONMENT_KEYS))
+    if family is not None and feeder:
+        raise OptimizeConfigError(
+            f"feeder: {sorted(feeder)} given with family; allowed: none (the family's file "
+            "holds its part, friction, restitution, gravity and inputs)"
+        )
     environment_from_dict(feeder, prefix="feeder.")  # validate now, not in a worker
     objective = mapping_field(
         data.get("objective", {}) or {}, "objective", {"trials", "seed", "weight", "step", "t_max"}
@@ -211,16 +277,7 @@ def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
     except ValueError as exc:
         raise OptimizeConfigError(str(exc)) from None
     start = mapping_field(data.get("start", {}) or {}, "start", {"presets", "sweep_best"})
-    presets = start.get("presets", ["table3"])
-    if not isinstance(presets, list) or len(presets) > len(PRESET_NAMES):
-        raise OptimizeConfigError(
-            f"start.presets: expected a list of preset names, got {shown(repr(presets))}"
-        )
-    for i, preset in enumerate(presets):
-        if preset not in PRESET_NAMES:
-            raise OptimizeConfigError(
-                f"start.presets[{i}] = {shown(repr(preset))}; presets: {', '.join(PRESET_NAMES)}"
-            )
+    presets = _presets(start, family)
     methods_spec = data.get("methods")
     if not isinstance(methods_spec, list) or not methods_spec or len(methods_spec) > 100:
         raise OptimizeConfigError("methods: expected a list of 1 to 100 methods to run")
@@ -249,6 +306,8 @@ def _config_from_dict(data: Any, name: str) -> OptimizeConfig:
         final_candidates=integer_field(final.get("candidates", 4), "final.candidates", 1, 100),
         workers=integer_field(data.get("workers", 2), "workers", 1, 1024),
         max_attempts=integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100),
+        family=family,
+        family_yaml=family_yaml,
     )
 
 
@@ -257,6 +316,6 @@ def load_config(path: str | Path) -> OptimizeConfig:
     path = resolve_config(path)
     data = read_yaml(path, "config", OptimizeConfigError)
     try:
-        return config_from_dict(data, name=path.stem)
+        return config_from_dict(data, name=path.stem, base=path.parent)
     except OptimizeConfigError as exc:
         raise OptimizeConfigError(f"{shown(path)}: {exc}") from None

@@ -17,6 +17,7 @@ import math
 import sqlite3
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from experiments.optimize import store
@@ -76,6 +77,8 @@ class Evaluator:
             step=c.step,
             t_max=c.t_max,
             perturbations=c.perturbations,
+            family=c.family_yaml if c.family is not None else "",
+            family_name=Path(c.family).stem if c.family is not None else "",
         )
 
     def run_trials(
@@ -119,9 +122,9 @@ class Evaluator:
         return pending
 
     def batch(self, run: str, budget: int, designs: Sequence[Sequence[float]]) -> list[float]:
-        """The robust objective of each design (12 values each) for the optimiser run ``run``
-        (e.g. ``nelder-mead/seed0``); raises :class:`BudgetSpent` once the run has asked for
-        ``budget`` evaluations (after storing those it could have)."""
+        """The robust objective of each design (its values: 12, or a family's) for the
+        optimiser run ``run`` (e.g. ``nelder-mead/seed0``); raises :class:`BudgetSpent` once
+        the run has asked for ``budget`` evaluations (after storing those it could have)."""
         n0 = self.asked.get(run, 0)
         room = max(0, budget - n0)
         spent = len(designs) > room

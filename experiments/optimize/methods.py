@@ -1,9 +1,10 @@
 """The derivative-free optimisers compared by ``partfeeder optimize``, on the unit cube.
 
-Every method minimises ``f``, which takes an (n, 12) array of points of the unit cube (Table
-2's box, scaled) and returns their n objective values: a whole generation at once for the
-population methods (evaluated in parallel), one point at a time for the simplex and line-search
-methods (each point's trials are then split over the workers). The budget is enforced by ``f``
+Every method minimises ``f``, which takes an (n, d) array of points of the unit cube (Table
+2's box, scaled, d = 12; a device family's box, d its parameters) and returns their n
+objective values: a whole generation at once for the population methods (evaluated in
+parallel), one point at a time for the simplex and line-search methods (each point's trials
+are then split over the workers). The budget is enforced by ``f``
 (it raises :class:`experiments.optimize.evaluator.BudgetSpent`), so every method gets exactly
 the same number of evaluations and stops only when spent or converged by its own test.
 
@@ -29,7 +30,6 @@ import numpy as np
 
 Objective = Callable[[np.ndarray], list[float]]
 
-DIMENSION = 12
 SIMPLEX_EDGE = 0.1
 CMA_STEP = 0.2
 START_JITTER = 0.1
@@ -45,12 +45,13 @@ def _jittered(start: np.ndarray, seed: int) -> np.ndarray:
 def differential_evolution(
     f: Objective, starts: np.ndarray, budget: int, seed: int, population: int | None
 ) -> None:
-    """scipy's differential evolution from ``starts`` (k, 12) filled to ``population``."""
+    """scipy's differential evolution from ``starts`` (k, d) filled to ``population``."""
     from scipy.optimize import differential_evolution as scipy_de
     from scipy.stats import qmc
 
+    dimension = starts.shape[1]
     size = max(population or 20, 5, len(starts))
-    fill = qmc.Halton(DIMENSION, scramble=True, rng=np.random.default_rng([seed, 2])).random(
+    fill = qmc.Halton(dimension, scramble=True, rng=np.random.default_rng([seed, 2])).random(
         size - len(starts)
     )
     init = np.vstack([np.clip(starts, 0.0, 1.0), fill])
@@ -63,7 +64,7 @@ def differential_evolution(
 
     scipy_de(
         not_called,
-        [(0.0, 1.0)] * DIMENSION,
+        [(0.0, 1.0)] * dimension,
         init=init,
         maxiter=max(1, budget),
         tol=0.0,
@@ -103,7 +104,7 @@ def nelder_mead(
 
     x0 = _jittered(start, seed)
     simplex = [x0]
-    for i in range(DIMENSION):
+    for i in range(len(x0)):
         vertex = x0.copy()
         vertex[i] += SIMPLEX_EDGE if vertex[i] + SIMPLEX_EDGE <= 1.0 else -SIMPLEX_EDGE
         simplex.append(vertex)
@@ -111,7 +112,7 @@ def nelder_mead(
         lambda u: f(u[None, :])[0],
         x0,
         method="Nelder-Mead",
-        bounds=[(0.0, 1.0)] * DIMENSION,
+        bounds=[(0.0, 1.0)] * len(x0),
         options={
             "maxfev": 10 * budget + 100,
             "initial_simplex": np.array(simplex),
@@ -126,11 +127,12 @@ def powell(f: Objective, start: np.ndarray, budget: int, seed: int, population: 
     """scipy's Powell with bounds."""
     from scipy.optimize import minimize
 
+    x0 = _jittered(start, seed)
     minimize(
         lambda u: f(u[None, :])[0],
-        _jittered(start, seed),
+        x0,
         method="Powell",
-        bounds=[(0.0, 1.0)] * DIMENSION,
+        bounds=[(0.0, 1.0)] * len(x0),
         options={"maxfev": 10 * budget + 100, "xtol": 1e-4, "ftol": 1e-6},
     )
 

@@ -16,9 +16,11 @@ over the trials whose feeder could be made. The first term dominates: R ranks de
 Gbar breaks ties (Gbar / (Gbar + G_SCALE) lies in [0, 1) and grows with Gbar). A design that
 cannot be built gets R = K + 1, above every buildable design, with the reason recorded.
 
-A job is plain data (the design values and a range of trial indices), so it pickles to a
-worker; :func:`evaluate_trials` runs it, :func:`robust_value` combines the trials of one
-design.
+A job is plain data (the design values and a range of trial indices; a device family's design
+carries the family file's text), so it pickles to a worker; :func:`evaluate_trials` runs it,
+:func:`robust_value` combines the trials of one design. A family's trials are the verdict's
+(:func:`experiments.drop.family_verdict.made_devices`: the device made to tolerance per trial,
+dropped from each of the family's entries).
 """
 
 from __future__ import annotations
@@ -28,9 +30,11 @@ import time
 from collections.abc import Sequence
 from typing import Any, TypedDict
 
+from experiments.drop.family_verdict import entry_names, made_devices
 from experiments.drop.perturbations import Perturbations
 from experiments.drop.verdict import Trial, VerdictSettings, made_feeders, run_trial
-from feeders.design import DesignParameters
+from experiments.family_config import family_of_text
+from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign
 from feeders.scene_yaml import environment_from_dict
 
@@ -41,7 +45,7 @@ class TrialsJob(TypedDict):
     """Trials ``first`` .. ``first + count - 1`` of one design, as a worker receives them."""
 
     key: str  # the design's key (its values, exactly)
-    values: list[float]  # the 12 parameters, order of PARAMETER_NAMES
+    values: list[float]  # the 12 parameters, order of PARAMETER_NAMES (a family's: its own)
     first: int
     count: int
     seed: int  # of the perturbation draws
@@ -49,6 +53,8 @@ class TrialsJob(TypedDict):
     step: float  # the dynamic level's h (s)
     t_max: float  # longest drop (s)
     perturbations: dict[str, float]
+    family: str  # a device family file's text ("": the 12-parameter feeder)
+    family_name: str  # the family's name unless its text names it
 
 
 def trial_to_dict(trial: Trial) -> dict[str, Any]:
@@ -92,18 +98,27 @@ def evaluate_trials(job: TrialsJob) -> dict[str, Any]:
         perturbations=Perturbations(**job["perturbations"]),
     )
     out: dict[str, Any] = {"key": job["key"], "first": job["first"], "trials": [], "reason": None}
+    orientations: tuple[str, ...] = ORIENTATIONS
+    parameters = len(PARAMETER_NAMES)  # design factors each trial draws (a family's: its own)
     try:
-        make_scene = made_feeders(
-            DesignParameters.from_vector(job["values"]),
-            part=environment.pop("part"),
-            friction=environment.pop("friction"),
-            **environment,
-        )
+        if job.get("family"):
+            family = family_of_text(job["family"], job["family_name"])
+            orientations, parameters = entry_names(family), len(family.vector_names)
+            make_scene = made_devices(family, job["values"])
+        else:
+            make_scene = made_feeders(
+                DesignParameters.from_vector(job["values"]),
+                part=environment.pop("part"),
+                friction=environment.pop("friction"),
+                **environment,
+            )
     except DegenerateDesign as exc:
         out["reason"] = exc.reason
     else:
         for index in range(job["first"], job["first"] + job["count"]):
-            trial = run_trial(make_scene, ORIENTATIONS, settings, job["seed"], index)
+            trial = run_trial(
+                make_scene, orientations, settings, job["seed"], index, parameters=parameters
+            )
             out["trials"].append(trial_to_dict(trial))
     out["wall_time_s"] = time.perf_counter() - t0
     return out
@@ -128,7 +143,7 @@ def robust_value(
             "value": float(k + 1),
             "both": 0,
             "trials": k,
-            "successes": [0] * len(ORIENTATIONS),
+            "successes": [0] * len(ORIENTATIONS),  # a family has two entries too (config)
             "mean_g": None,
             "reason": reason or "no trials",
         }

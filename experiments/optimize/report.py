@@ -10,11 +10,15 @@ then how it was found: Eq. 10 in the same model, the validation of the candidate
 comparison of methods (convergence curves: best robust objective and best P(both) of the K
 draws against evaluations, every seed). The numbers come from the results of
 :func:`experiments.optimize.run.results`; this module only shows them.
+
+A device family's optimisation (results with ``family``) shows its own parameters and box, the
+optimum beside the family's default on the same fresh draws, and the strips of both designs'
+nominal drops from the family's entries; the comparison section and the margins are the
+12-parameter feeder's, and the page says so where they would stand.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import html
 import math
 import time
@@ -169,29 +173,27 @@ def convergence_notes(results: dict[str, Any]) -> list[str]:
 
 
 def strip_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[str, Path]:
-    """The strips of the nominal drops of the optimum and table3 (Figs. 10-11)."""
+    """The strips of the nominal drops of the optimum and the baseline (table3, or a device
+    family's default) from every entry (Figs. 10-11)."""
     from experiments.drop.passive import passive_drop
     from experiments.drop.pictures import drop_strip
-    from feeders.design import DesignParameters
-    from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
-    from feeders.scene_yaml import environment_from_dict
+    from experiments.optimize.run import designed
+    from feeders.feeder import DegenerateDesign
 
+    space = designed(config)
     out = {}
     for label in labels(results):
         entry = results.get(label)
         if entry is None:
             continue
-        environment = environment_from_dict(config.feeder)
-        part, friction = environment.pop("part"), environment.pop("friction")
-        values = [entry["values"][n] for n in PARAMETER_NAMES]
+        values = [entry["values"][n] for n in space.names]
         try:
-            scene = build_feeder(
-                DesignParameters.from_vector(values), part, friction=friction, **environment
-            )
+            scene = space.scene(config, values, name=label)
         except DegenerateDesign:
             continue
-        scene = dataclasses.replace(scene, name=label)
-        drops = [passive_drop(scene, o, step=config.step, t_max=config.t_max) for o in ORIENTATIONS]
+        drops = [
+            passive_drop(scene, o, step=config.step, t_max=config.t_max) for o in space.entries
+        ]
         name = strip_name(label)
         out[name] = drop_strip(scene, drops, figures_dir / f"{name}.png")
     return out
@@ -238,13 +240,23 @@ def _interval(ci: Any) -> str:
     return f"[{cell(ci[0], '.3f')}, {cell(ci[1], '.3f')}]"
 
 
+def parameter_box(results: dict[str, Any]) -> dict[str, tuple[float, float]]:
+    """Name -> (low, high) of each design parameter: Table 2's, or the device family's box."""
+    family = results.get("family")
+    if not family:
+        return {name: TABLE2_BOUNDS[name] for name in PARAMETER_NAMES}
+    return {
+        name: (float(lo), float(hi))
+        for name, lo, hi in zip(family["parameters"], family["low"], family["high"], strict=True)
+    }
+
+
 def design_table_rows(results: dict[str, Any]) -> list[list[str]]:
-    """Table 3's layout: per parameter its Table 2 range, the baseline's value and the
-    optimum's."""
+    """Table 3's layout: per parameter its range (Table 2's, or the family's box), the
+    baseline's value and the optimum's."""
     optimum, baseline = labels(results)
     rows = []
-    for name in PARAMETER_NAMES:
-        low, high = TABLE2_BOUNDS[name]
+    for name, (low, high) in parameter_box(results).items():
         row = [name, f"[{low:g}, {high:g}]"]
         for label in (baseline, optimum):
             entry = results.get(label)
@@ -371,8 +383,49 @@ def chosen_sentence(results: dict[str, Any]) -> str:
     )
 
 
+def family_sentence(results: dict[str, Any]) -> str:
+    """What a device family's optimisation found, in one paragraph: the optimum's verdict on
+    fresh draws beside the baseline's (the family's default) on the same draws."""
+    family = results["family"]
+    optimum, baseline = labels(results)
+    parts = [
+        f"Device family {family['name']} ({len(family['parameters'])} parameters; entries "
+        f"{', '.join(family['entries'])})."
+    ]
+    for label in (optimum, baseline):
+        verdict = (results.get(label) or {}).get("verdict")
+        if not verdict:
+            parts.append(f"{label}: not judged yet.")
+            continue
+        both = verdict["both"]
+        parts.append(
+            f"{label}: {verdict['decision']}, both entries {both['successes']} of "
+            f"{verdict['drops']} fresh trials, P(both) 95% interval {_interval(both['interval'])}, "
+            f"mean Eq. 10 G {cell(verdict.get('mean_g'), '.2f')} s."
+        )
+    parts.append(f"Chosen: {chosen_sentence(results)}.")
+    return " ".join(parts)
+
+
+def _family_box(results: dict[str, Any]) -> str:
+    """A family's "what to build": the optimum named when its fresh verdict works."""
+    verdict = (results.get(OPTIMUM) or {}).get("verdict") or {}
+    kind = "recommendation" if verdict.get("works") else "recommendation none"
+    title = "What to build: the optimum" if verdict.get("works") else "No design confirmed"
+    values = (results.get(OPTIMUM) or {}).get("values") or {}
+    shown = ", ".join(f"{n} = {v:.4f}" for n, v in values.items())
+    return (
+        f'<div class="{kind}"><h2>{html.escape(title)}</h2><p>'
+        + html.escape(family_sentence(results))
+        + (f"</p><p>The optimum: {html.escape(shown)}." if shown else "")
+        + "</p></div>"
+    )
+
+
 def _recommendation(results: dict[str, Any]) -> str:
     comparison = results.get("comparison")
+    if results.get("family"):
+        return _family_box(results)
     if not comparison:
         return recommendation_html(
             None, None, None, "", absent="the optimisation has not judged its optimum yet"
@@ -406,6 +459,13 @@ def _strips(results: dict[str, Any], figures: dict[str, Path]) -> list[str]:
     return parts if len(parts) > 1 else []
 
 
+def _absent(what: str, why: str | None) -> list[str]:
+    """A note saying why a section is not on the page."""
+    if not why:
+        return []
+    return [f'<p class="note">{html.escape(what)} is not shown: {html.escape(why)}.</p>']
+
+
 def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
     e = html.escape
     obj = results["objective"]
@@ -423,6 +483,7 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
         f"{cell(results.get('wall_time_s'), '.1f')} s.</p>",
         _recommendation(results),
         *(comparison_html(comparison, figures) if comparison else []),
+        *_absent("The comparison", results.get("comparison_absent")),
         *_strips(results, figures),
         *margins_html(margins, figures, results.get("margins_absent")),
         "<h2>How it was found: the objective</h2>",
@@ -453,7 +514,11 @@ def summary_text(results: dict[str, Any]) -> str:
     lines = [f"optimisation {results['name']}: {results['evaluations']} designs evaluated"]
     lines.append("")
     baseline = labels(results)[1]
-    lines.append(f"{'parameter':>10} {'Table 2 range':>16} {baseline:>9} {'optimum':>9}")
+    if results.get("family"):
+        lines.append(family_sentence(results))
+        lines.append("")
+    box = "family's range" if results.get("family") else "Table 2 range"
+    lines.append(f"{'parameter':>10} {box:>16} {baseline:>9} {'optimum':>9}")
     for row in design_table_rows(results):
         lines.append(f"{row[0]:>10} {row[1]:>16} {row[2]:>9} {row[3]:>9}")
     lines.append("")

@@ -1,7 +1,7 @@
 """The design optimisation (paper Section 4, Eq. 10-11), made robust: its steps in order.
 
 1. The starts (the config's presets and, with ``--from``, a sweep's best designs by their
-   verdict) are clipped into Table 2's box and evaluated.
+   verdict) are clipped into Table 2's box (a device family's: its box) and evaluated.
 2. Every method of the config runs once per seed on its budget of evaluations
    (:mod:`experiments.optimize.methods`), all on the same robust objective
    (:mod:`experiments.optimize.objective`) and the same stored evaluations.
@@ -14,8 +14,12 @@
    reported verdict on other fresh draws (seed ``final.seed + 1``, the same for both: a paired
    comparison, :mod:`experiments.optimize.comparison`, and not the draws the optimum was
    chosen on), and one nominal drop per entry each (Eq. 10's G as the paper computes it).
+   A device family's baseline is its default vector; the comparison's section (parameter
+   differences over Table 2's box, the feeders drawn over each other) is the 12-parameter
+   feeder's, so a family's results have the two verdicts without it.
 5. When the optimum works on those draws, its tolerance margins
-   (:mod:`experiments.optimize.tolerance`).
+   (:mod:`experiments.optimize.tolerance`): the 12-parameter feeder's only (the margins'
+   axes are its parameters, friction and the peg's dimensions).
 
 Every evaluation, verdict and margin is stored as it finishes
 (:mod:`experiments.optimize.store`): a run started again in the same directory repeats none
@@ -24,19 +28,22 @@ of them, and another baseline costs only its own verdict.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from experiments.drop.family_verdict import entry_names
 from experiments.drop.passive import eq10_objective, passive_drop
-from experiments.drop.verdict import Verdict
+from experiments.drop.verdict import Verdict, classes_of
 from experiments.executors import open_pool
+from experiments.family_config import family_record
 from experiments.optimize import store
 from experiments.optimize.comparison import stored_comparison, verdict_of_trials
-from experiments.optimize.config import OptimizeConfig
+from experiments.optimize.config import FAMILY_DEFAULT, OptimizeConfig
 from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
 from experiments.optimize.methods import METHODS, POPULATION_METHODS
 from experiments.optimize.objective import eq10_terms
@@ -46,40 +53,106 @@ from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignParameters, pres
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.scene_yaml import environment_from_dict
 
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
+    from feeders.scene import Scene
+
 DATABASE = "evaluations.sqlite"
 REFERENCE = "table3"  # the baseline unless another is given
 STARTS_RUN = "starts"
 OPTIMUM = "optimum"
 
-Baseline = tuple[str, list[float]]  # (label, 12 values)
+Baseline = tuple[str, list[float]]  # (label, the design's values: 12, or a family's)
 
 
-def default_baseline() -> Baseline:
-    """The paper's table3, as ``(label, 12 values)``."""
+@dataclasses.dataclass(frozen=True)
+class Designed:
+    """What an optimisation designs: the parameters' names and box, the entries' names, and
+    the device family (None: the paper's 12-parameter feeder, Table 2's box)."""
+
+    names: tuple[str, ...]
+    low: np.ndarray
+    high: np.ndarray
+    entries: tuple[str, ...]
+    family: DeviceFamily | None = None
+
+    def scene(self, config: OptimizeConfig, values: list[float], name: str = "") -> Scene:
+        """The nominal device of ``values`` (``DegenerateDesign`` when it cannot be built)."""
+        if self.family is not None:
+            scene = self.family.build(values)
+            return dataclasses.replace(scene, name=name) if name else scene
+        environment = environment_from_dict(config.feeder)
+        part, friction = environment.pop("part"), environment.pop("friction")
+        if name:
+            environment["name"] = name
+        return build_feeder(
+            DesignParameters.from_vector(values), part, friction=friction, **environment
+        )
+
+    def classes(self) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+        """The verdicts' outcome classes and the goal's (a family's, from its default
+        device); None: the feeder's."""
+        if self.family is None:
+            return None
+        return classes_of(self.family.build(self.family.default()))
+
+
+def designed(config: OptimizeConfig) -> Designed:
+    """What ``config`` designs: its family's parameters, box and entries, or the feeder's."""
+    family = config.device_family()
+    if family is None:
+        return Designed(PARAMETER_NAMES, DESIGN_SPACE.low, DESIGN_SPACE.high, ORIENTATIONS)
+    low, high = family.bounds()
+    return Designed(
+        tuple(family.vector_names),
+        np.asarray(low, dtype=float),
+        np.asarray(high, dtype=float),
+        entry_names(family),
+        family,
+    )
+
+
+def default_baseline(config: OptimizeConfig | None = None) -> Baseline:
+    """The paper's table3, as ``(label, 12 values)``; a family's default vector (labelled
+    ``default``) when ``config`` designs a family."""
+    family = None if config is None else config.device_family()
+    if family is not None:
+        return FAMILY_DEFAULT, [float(v) for v in family.default()]
     return REFERENCE, preset(REFERENCE).to_vector().tolist()
 
 
-def to_unit(values: np.ndarray) -> np.ndarray:
-    """Designs (n, 12) as points of the unit cube over Table 2's box, clipped into it."""
-    low, high = DESIGN_SPACE.low, DESIGN_SPACE.high
+def to_unit(values: np.ndarray, space: Designed | None = None) -> np.ndarray:
+    """Designs (n, d) as points of the unit cube over the box (Table 2's unless ``space``
+    gives a family's), clipped into it."""
+    low = DESIGN_SPACE.low if space is None else space.low
+    high = DESIGN_SPACE.high if space is None else space.high
     return np.clip((np.asarray(values, dtype=float) - low) / (high - low), 0.0, 1.0)
 
 
-def from_unit(unit: np.ndarray) -> np.ndarray:
-    """Points of the unit cube (n, 12), clipped into it, as designs in Table 2's box."""
-    return DESIGN_SPACE.scale(np.clip(np.asarray(unit, dtype=float), 0.0, 1.0))
+def from_unit(unit: np.ndarray, space: Designed | None = None) -> np.ndarray:
+    """Points of the unit cube (n, d), clipped into it, as designs in the box (Table 2's
+    unless ``space`` gives a family's)."""
+    unit = np.clip(np.asarray(unit, dtype=float), 0.0, 1.0)
+    if space is None:
+        return DESIGN_SPACE.scale(unit)
+    return space.low + unit * (space.high - space.low)
 
 
 def start_designs(config: OptimizeConfig, sweep_best: list[dict]) -> dict[str, list[float]]:
-    """Name -> design values of every start, in Table 2's box: the presets, then the sweep's
-    best (named ``sweep:<design_id>``)."""
-    starts = {name: preset(name).to_vector() for name in config.presets}
+    """Name -> design values of every start, in the box (Table 2's, or the family's): the
+    presets (a family's ``default``: its default vector), then the sweep's best (named
+    ``sweep:<design_id>``)."""
+    space = designed(config)
+    if space.family is not None:
+        family = space.family
+        starts = {name: np.asarray(family.default(), dtype=float) for name in config.presets}
+    else:
+        starts = {name: preset(name).to_vector() for name in config.presets}
     for b in sweep_best[: config.sweep_best]:
         starts[f"sweep:{b['design_id']}"] = np.asarray(b["values"], dtype=float)
     # clipped in design space, not mapped through the unit cube: a design inside the box is
     # kept to the last bit (contact is chaotic: 1e-16 changes a drop)
-    low, high = DESIGN_SPACE.low, DESIGN_SPACE.high
-    return {name: np.clip(v, low, high).tolist() for name, v in starts.items()}
+    return {name: np.clip(v, space.low, space.high).tolist() for name, v in starts.items()}
 
 
 def run_label(method: str, seed: int) -> str:
@@ -97,18 +170,23 @@ def optimise(
     margins: bool = True,
 ) -> dict[str, Any]:
     """Run the optimisation of ``config`` in directory ``out`` (resuming what is stored there)
-    and return its results as plain data (:func:`results`). ``baseline`` ``(label, 12
-    values)``, table3 unless given, is judged on the optimum's fresh draws; ``margins``: the
-    optimum's margins are measured (or read from the store) when it works."""
+    and return its results as plain data (:func:`results`). ``baseline`` ``(label, values)``,
+    table3 (a family's default) unless given, is judged on the optimum's fresh draws;
+    ``margins``: the optimum's margins are measured (or read from the store) when it works
+    (the 12-parameter feeder's only)."""
     starts = start_designs(config, sweep_best or [])
     if not starts:
         raise ValueError("start: no start designs (give start.presets, or --from a sweep)")
-    baseline = baseline or default_baseline()
+    space = designed(config)
+    baseline = baseline or default_baseline(config)
     label, base_values = baseline[0], [float(v) for v in baseline[1]]
     base_key = store.design_key(base_values)
     db = store.connect(out / DATABASE)
     try:
-        store.claim(db, {**config.to_dict(), "starts": starts}, config.objective_key())
+        claimed = {**config.to_dict(), "starts": starts}
+        if space.family is not None:  # the family as it was: its record, the file's text
+            claimed["family_record"] = family_record(space.family, config.family_yaml)
+        store.claim(db, claimed, config.objective_key())
         t0 = time.perf_counter()
         with open_pool(executor, config.workers, config.max_attempts, scheduler) as pool:
             ev = Evaluator(db, pool, config, progress, workers=config.workers)
@@ -121,12 +199,12 @@ def optimise(
                         "evaluations": evaluations_total(config, len(starts)),
                     },
                 )
-            _run_methods(ev, config, starts, progress)
+            _run_methods(ev, config, starts, progress, space)
             # the baseline's objective, to compare (stored already if it was a start)
             ev.batch(baseline_run(base_key), 1, [base_values])
             optimum = _validate(ev, config, _runs(config))
             _verdicts(ev, config, {OPTIMUM: optimum, label: base_key}, 1)
-        if margins and _works(db, config, OPTIMUM):
+        if margins and space.family is None and _works(db, config, OPTIMUM):
             measured = store.stored_margins(db, optimum, settings_key(config)) is not None
             on_axis = None if measured else _axis_progress(progress)
             optimum_margins(db, config, optimum, OPTIMUM, config.workers, on_axis=on_axis)
@@ -172,17 +250,22 @@ def evaluations_total(config: OptimizeConfig, starts: int) -> int:
 
 
 def _run_methods(
-    ev: Evaluator, config: OptimizeConfig, starts: dict[str, list[float]], progress: Progress | None
+    ev: Evaluator,
+    config: OptimizeConfig,
+    starts: dict[str, list[float]],
+    progress: Progress | None,
+    space: Designed | None = None,
 ) -> None:
-    """Evaluate the starts, then run every method once per seed on its budget."""
+    """Evaluate the starts, then run every method once per seed on its budget, on the unit
+    cube over the box (``space``: a family's; None: Table 2's)."""
     start_values = ev.batch(STARTS_RUN, len(starts), list(starts.values()))
-    unit_starts = to_unit(np.array(list(starts.values())))
+    unit_starts = to_unit(np.array(list(starts.values())), space)
     best_start = unit_starts[int(np.argmin(start_values))]
     done = [(STARTS_RUN, len(starts))]
     for method in config.methods:
         first_points = unit_starts
         if method.start == "best":  # the best design of the methods before this one
-            best = to_unit(np.array([store.design_of_key(best_key(ev.db, done))]))
+            best = to_unit(np.array([store.design_of_key(best_key(ev.db, done))]), space)
             first_points = np.vstack([best, unit_starts])
         for seed in method.seeds:
             label = run_label(method.method, seed)
@@ -190,7 +273,7 @@ def _run_methods(
                 progress("run", {"run": label, "budget": method.budget})
 
             def f(unit: np.ndarray, label: str = label, budget: int = method.budget) -> list[float]:
-                return ev.batch(label, budget, from_unit(unit).tolist())
+                return ev.batch(label, budget, from_unit(unit, space).tolist())
 
             if method.method in POPULATION_METHODS:
                 first = first_points
@@ -285,17 +368,13 @@ def best_key(db, runs: list[tuple[str, int]]) -> str:
     return ranked_keys(db, runs, 1)[0]
 
 
-def _nominal(config: OptimizeConfig, values: list[float]) -> dict[str, Any]:
+def _nominal(config: OptimizeConfig, values: list[float], space: Designed) -> dict[str, Any]:
     """One unperturbed drop per entry: success, T, distance to q_goal, and Eq. 10's G."""
-    environment = environment_from_dict(config.feeder)
-    part, friction = environment.pop("part"), environment.pop("friction")
     try:
-        scene = build_feeder(
-            DesignParameters.from_vector(values), part, friction=friction, **environment
-        )
+        scene = space.scene(config, values)
     except DegenerateDesign as exc:
         return {"reason": exc.reason}
-    drops = [passive_drop(scene, o, step=config.step, t_max=config.t_max) for o in ORIENTATIONS]
+    drops = [passive_drop(scene, o, step=config.step, t_max=config.t_max) for o in space.entries]
     return {
         "reason": None,
         "G": eq10_objective(drops, config.weight),
@@ -312,12 +391,16 @@ def _nominal(config: OptimizeConfig, values: list[float]) -> dict[str, Any]:
 
 
 def _design_entry(
-    config: OptimizeConfig, key: str, evaluation: dict[str, Any], verdict: dict | None
+    config: OptimizeConfig,
+    key: str,
+    evaluation: dict[str, Any],
+    verdict: dict | None,
+    space: Designed,
 ) -> dict[str, Any]:
     values = store.design_of_key(key)
     k = evaluation["trials"]
     entry: dict[str, Any] = {
-        "values": dict(zip(PARAMETER_NAMES, values, strict=True)),
+        "values": dict(zip(space.names, values, strict=True)),
         "objective": {
             "value": evaluation["value"],
             "both": evaluation["both"],
@@ -329,10 +412,12 @@ def _design_entry(
         },
     }
     if verdict is not None:
-        v = verdict_of_trials(verdict["trial_data"], config.final_target)
+        v = verdict_of_trials(
+            verdict["trial_data"], config.final_target, space.entries, space.classes()
+        )
         entry["verdict"] = {**v.to_dict(), "seed": verdict["seed"]}
         entry["verdict"]["mean_g"] = _mean_g(v, config.weight)
-    entry["nominal"] = _nominal(config, values)
+    entry["nominal"] = _nominal(config, values, space)
     return entry
 
 
@@ -349,7 +434,10 @@ def results(
     objective, verdict on fresh draws, nominal drops), the validated ``candidates``, the
     ``comparison`` of the optimum with the baseline on the same fresh draws
     (:func:`experiments.optimize.comparison.stored_comparison`) and the optimum's ``margins``
-    (None when not measured, ``margins_absent`` says why)."""
+    (None when not measured, ``margins_absent`` says why). A device family's: ``family``
+    (name, parameters, box, entries), its own parameter names, no comparison section
+    (``comparison_absent`` says why) and no margins."""
+    space = designed(config)
     values = store.evaluations(db)
     calls = store.calls(db)
     runs = []
@@ -415,10 +503,15 @@ def results(
         "runs": runs,
         "evaluations": len(values),
         "worker_time_s": sum(e["wall_time_s"] for e in values.values()),
+        "parameters": list(space.names),
+        "entries": list(space.entries),
     }
+    if space.family is not None:
+        record = family_record(space.family, config.family_yaml)
+        out["family"] = {k: v for k, v in record.items() if k != "yaml"}
     if wall is not None:
         out["wall_time_s"] = wall
-    label, base_values = baseline or default_baseline()
+    label, base_values = baseline or default_baseline(config)
     base_key = store.design_key(base_values)
     out["compared_with"] = label
     seed, trials = config.final_seed + 1, config.final_trials
@@ -431,10 +524,12 @@ def results(
             continue  # the verdict of another baseline
         key = stored["key"]
         verdicts[name] = stored
-        out[name] = _design_entry(config, key, values[key], stored)
-    out["candidates"] = _candidates(db, config, values, out.get(OPTIMUM))
+        out[name] = _design_entry(config, key, values[key], stored, space)
+    out["candidates"] = _candidates(db, config, values, out.get(OPTIMUM), space)
     out["comparison"] = None
-    if len(verdicts) == 2:
+    if space.family is not None:
+        out["comparison_absent"] = FAMILY_NO_COMPARISON
+    elif len(verdicts) == 2:
         optimum = verdicts[OPTIMUM]
         times = [store.verdict_time(db, v["key"], seed, trials) for v in verdicts.values()]
         out["comparison"] = stored_comparison(
@@ -444,14 +539,29 @@ def results(
             config.final_target,
             None if None in times else sum(t for t in times if t is not None),
         )
-    out["margins"], out["margins_absent"] = _margins(db, config, out.get(OPTIMUM))
+    out["margins"], out["margins_absent"] = _margins(db, config, out.get(OPTIMUM), space)
     return out
 
 
+FAMILY_NO_COMPARISON = (
+    "the comparison section (parameter differences as fractions of Table 2's box, the "
+    "designs drawn over each other, its entries) is the 12-parameter feeder's; a device "
+    "family's optimum and baseline (its default) are compared by their verdicts on the same "
+    "fresh draws in the table of Eq. 10 and the verdicts"
+)
+FAMILY_NO_MARGINS = (
+    "the margins are the 12-parameter feeder's (each of its parameters within Table 2's box, "
+    "the walls' friction, the peg's length, width and mass split); a device family's "
+    "per-parameter search is not yet wired (docs/families.md)"
+)
+
+
 def _margins(
-    db, config: OptimizeConfig, optimum: dict[str, Any] | None
+    db, config: OptimizeConfig, optimum: dict[str, Any] | None, space: Designed
 ) -> tuple[dict[str, Any] | None, str | None]:
     """The optimum's stored margins, or None and why there are none."""
+    if space.family is not None:
+        return None, FAMILY_NO_MARGINS
     if optimum is None:
         return None, "there is no optimum yet"
     verdict = optimum.get("verdict") or {}
@@ -467,7 +577,9 @@ def _margins(
     return stored, None
 
 
-def _candidates(db, config: OptimizeConfig, values, optimum: dict | None) -> list[dict]:
+def _candidates(
+    db, config: OptimizeConfig, values, optimum: dict | None, space: Designed
+) -> list[dict]:
     """The validated candidates: R and P(both) on the K draws, and on fresh draws."""
     rows = []
     for rank in range(config.final_candidates):
@@ -488,7 +600,7 @@ def _candidates(db, config: OptimizeConfig, values, optimum: dict | None) -> lis
                 "interval": list(verdict.both_interval),
                 "mean_g": _mean_g(verdict, config.weight),
                 "chosen": optimum is not None
-                and design == [optimum["values"][n] for n in PARAMETER_NAMES],
+                and design == [optimum["values"][n] for n in space.names],
             }
         )
     return rows

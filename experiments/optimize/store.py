@@ -2,11 +2,15 @@
 
 Tables (one row per ...):
 
-- ``meta`` (key, value): ``config`` (the config as JSON), ``objective_key`` (the digest of
-  what decides a value: a database belongs to one), ``created``.
-- ``evaluations``: a design evaluated: ``key`` (its 12 values, exactly, as JSON), the robust
+- ``meta`` (key, value): ``config`` (the config as JSON; a device family's optimisation adds
+  ``family_record``, :func:`experiments.family_config.family_record`, whose parameters say
+  how many values a key holds), ``objective_key`` (the digest of what decides a value: a
+  database belongs to one), ``created``.
+- ``evaluations``: a design evaluated: ``key`` (its 12 values, or a family's, exactly, as
+  JSON), the robust
   objective ``value`` (:mod:`experiments.optimize.objective`), ``both`` (trials that succeed
-  from both entries) of ``trials``, successes per entry, ``mean_g`` (mean Eq. 10 G), ``reason``
+  from both entries) of ``trials``, successes per entry (a family's two entries in its file's
+  order), ``mean_g`` (mean Eq. 10 G), ``reason``
   (why degenerate), every trial as JSON, and ``wall_time_s`` (worker time).
 - ``calls``: the n-th evaluation a method run asked for (``run`` is e.g.
   ``differential-evolution/seed0``), pointing at its design's evaluation. A design asked again
@@ -95,7 +99,7 @@ def _damaged(path: Path, problem: str) -> StoreDamaged:
 
 
 def design_key(values: list[float]) -> str:
-    """The key of a design: its 12 values as JSON (Python's float repr round-trips exactly)."""
+    """The key of a design: its values as JSON (Python's float repr round-trips exactly)."""
     return json.dumps([float(v) for v in values])
 
 
@@ -103,19 +107,32 @@ def design_of_key(key: str) -> list[float]:
     return [float(v) for v in json.loads(key)]
 
 
+def _parameter_count(db: sqlite3.Connection) -> int:
+    """How many values a design key holds: the family's parameters when the stored config
+    names a family (its ``family_record``), else the 12 of the feeder."""
+    row = db.execute("SELECT value FROM meta WHERE key = 'config'").fetchone()
+    try:
+        record = json.loads(row[0]).get("family_record") if row is not None else None
+        return len(record["parameters"]) if record else len(PARAMETER_NAMES)
+    except (ValueError, TypeError, KeyError, AttributeError):
+        return len(PARAMETER_NAMES)
+
+
 def _content_problem(db: sqlite3.Connection) -> str | None:
-    """Rows this module never writes: a key that is not 12 finite numbers, a value that is not
-    finite and non-negative, counts out of order, trial data that is not JSON."""
+    """Rows this module never writes: a key that is not the design's finite numbers (12, or
+    the stored family's count), a value that is not finite and non-negative, counts out of
+    order, trial data that is not JSON."""
+    count = _parameter_count(db)
     for (key,) in db.execute("SELECT key FROM evaluations"):
         try:
             values = json.loads(key)
-            ok = len(values) == len(PARAMETER_NAMES) and all(
+            ok = len(values) == count and all(
                 isinstance(v, float) and math.isfinite(v) for v in values
             )
         except (ValueError, TypeError):
             ok = False
         if not ok:
-            return "evaluations: a key is not a design's 12 values"
+            return f"evaluations: a key is not a design's {count} values"
     bad = db.execute(
         """SELECT 1 FROM evaluations WHERE typeof(value) != 'real' OR NOT value >= 0
         OR typeof(trials) != 'integer' OR trials < 1
