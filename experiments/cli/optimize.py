@@ -143,28 +143,33 @@ def sweep_best_designs(sweep: Path | None, config: OptimizeConfig | None = None)
 def _check_same_design(
     sweep: Path, record: dict[str, Any] | None, config: OptimizeConfig | None
 ) -> None:
-    """Refuse a sweep of another device (another family, or the feeder for a family)."""
-    from experiments.family_config import text_digest
-
-    ours = None if config is None or config.family is None else config.family_yaml
-    if record is None and ours is None:
+    """Refuse a sweep of another device: the feeder's for a family, a family's for the
+    feeder, or a family of another name or other parameters (the sweep's designs are vectors
+    of its parameters). A sweep of the same family whose file has changed since (a comment,
+    a wall moved) is accepted: its designs are only starts, each evaluated again under this
+    config's family; its verdicts only order them."""
+    family = None if config is None else config.device_family()
+    if record is None and family is None:
         return
-    if record is not None and ours is not None and text_digest(record["yaml"]) == text_digest(ours):
+    if (
+        record is not None
+        and family is not None
+        and (record["name"], list(record["parameters"])) == (family.name, list(family.vector_names))
+    ):
         return
-    assert config is not None or record is not None
     theirs = (
         "the 12-parameter feeder"
         if record is None
         else f"device family '{record['name']}' ({', '.join(record['parameters'])})"
     )
-    if ours is None:
-        mine = "the 12-parameter feeder (no family:)"
-    else:
-        assert config is not None and config.family is not None
-        mine = f"family {Path(config.family).stem}"
+    mine = (
+        "the 12-parameter feeder (no family:)"
+        if family is None
+        else f"family '{family.name}' ({', '.join(family.vector_names)})"
+    )
     raise UsageError(
-        f"--from '{sweep}': a sweep of {theirs}, and this config's family designs {mine}; "
-        "allowed: a sweep of the same device (the same family file, or both the feeder)"
+        f"--from '{sweep}' is a sweep of {theirs}; this config's family: designs {mine}; "
+        "allowed: a sweep of the same device"
     )
 
 
