@@ -459,6 +459,19 @@ def _strips(results: dict[str, Any], figures: dict[str, Path]) -> list[str]:
     return parts if len(parts) > 1 else []
 
 
+def _family_design_table(results: dict[str, Any]) -> list[str]:
+    """A device family's parameters: the family's box, the baseline's and the optimum's values
+    (the 12-parameter feeder's are in the comparison section)."""
+    if not results.get("family"):
+        return []
+    baseline = labels(results)[1]
+    headers = ["parameter", "family's range", baseline, OPTIMUM]
+    return [
+        "<h2>The design: the family's parameters</h2>",
+        html_table(headers, design_table_rows(results), (0,)),
+    ]
+
+
 def _absent(what: str, why: str | None) -> list[str]:
     """A note saying why a section is not on the page."""
     if not why:
@@ -484,6 +497,7 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
         _recommendation(results),
         *(comparison_html(comparison, figures) if comparison else []),
         *_absent("The comparison", results.get("comparison_absent")),
+        *_family_design_table(results),
         *_strips(results, figures),
         *margins_html(margins, figures, results.get("margins_absent")),
         "<h2>How it was found: the objective</h2>",

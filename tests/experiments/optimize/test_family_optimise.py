@@ -108,6 +108,7 @@ def test_the_report_builds_with_both_designs_strips_and_says_what_is_left_out(cu
         assert (out / "figures" / f"strip_design_{label}.png").stat().st_size > 10_000
         assert f"strip_design_{label}.png" in text
     assert "theta = " in text and "Device family fig1-cup" in text
+    assert "The design: the family's parameters" in text and "chute_width" in text
     assert "The comparison is not shown" in text and "12-parameter feeder" in text
     assert results["margins"] is None and "12-parameter feeder" in results["margins_absent"]
 
