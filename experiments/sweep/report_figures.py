@@ -317,7 +317,8 @@ def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
     rows = list(summary.get("pruning") or [])
     truth = str(summary.get("truth") or (ladder[-1] if ladder else "the top level"))
     width = min(10.0, max(5.0, 2.2 * len(rows) + 2.0))  # inches
-    fig, ax = plt.subplots(figsize=(width, 4.2))
+    title = textwrap.fill(pruning_title(summary, ladder), int(8 * width))
+    fig, ax = plt.subplots(figsize=(width, 4.2 + 0.3 * title.count("\n")))
     width = 0.36
     bars = ((-width / 2, "precision", "#6a51a3"), (width / 2, "recall", "#41ab5d"))
     why = {
@@ -351,7 +352,7 @@ def pruning_plot(summary: dict, ladder: list[str]) -> Figure:
     ax.set_ylim(0, 1.25)
     ax.set_yticks(np.linspace(0.0, 1.0, 6))
     ax.set_ylabel(f"fraction, vs {truth} (95% CI)")
-    ax.set_title(textwrap.fill(pruning_title(summary, ladder), int(8 * width)), fontsize=11)
+    ax.set_title(title, fontsize=11)
     ax.legend(
         handles=[Patch(color=c, label=key) for _, key, c in bars],
         fontsize=9,
