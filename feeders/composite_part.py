@@ -207,8 +207,9 @@ def _polygon_moments(v: np.ndarray) -> tuple[float, np.ndarray, float]:
 class CompositePart:
     """A rigid planar part: convex polygons (``(K_i, 2)`` CCW, part frame) and discs
     (``(D, 3)``: cx, cy, radius), with their densities (mass per area) and ``labels`` naming
-    each polygon then each disc in errors (``part.pieces[2]``). Compared by identity (its
-    fields are arrays, whose ``==`` is element-wise).
+    each polygon then each disc in errors (``part.pieces[2]``). Two parts are equal when
+    their pieces, densities and labels are (by value: so a device family that holds one
+    compares equal to the same family read again).
 
     Computed: ``mass``, ``com`` (part frame), ``inertia`` about the centre of mass
     (mass x length^2) and ``area``. A polygon given clockwise is stored counter-clockwise.
@@ -299,6 +300,24 @@ class CompositePart:
             ((1.0 - heavy_fraction) * peg.mass / half, heavy_fraction * peg.mass / half),
             labels=("peg light half", "peg heavy half"),
         )
+
+    def _key(self) -> tuple:
+        return (
+            tuple(v.tobytes() for v in self.polygons),
+            tuple(v.shape for v in self.polygons),
+            self.polygon_densities,
+            self.discs.tobytes(),
+            self.disc_densities,
+            self.labels,
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, CompositePart):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
 
     def body_polygons(self) -> tuple[np.ndarray, ...]:
         """The convex pieces in the body frame (origin at the centre of mass), CCW."""

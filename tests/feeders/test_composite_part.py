@@ -560,3 +560,15 @@ def test_a_pieces_disc_is_written_circle_as_in_a_scene_file():
     assert (a.mass, a.inertia, tuple(a.com)) == (b.mass, b.inertia, tuple(b.com))
     with pytest.raises(CompositePartError, match=r"part\.pieces\[0\]: give exactly one of"):
         part_from_dict({"pieces": [{"circle": disc, "disc": disc, "density": 1}]})
+
+
+def test_parts_compare_by_value_so_a_family_equals_itself_read_again():
+    """Two cups built apart are equal (and hash alike); a cup of another wall is not; a
+    device family holding the cup equals the same file read again (helper report: families
+    with a composite part never compared equal)."""
+    from feeders.device_family import load_family, packaged_family
+
+    assert cup_part() == cup_part() and hash(cup_part()) == hash(cup_part())
+    assert cup_part() != cup_part(wall=0.1)
+    path = packaged_family("fig1-cup")
+    assert path is not None and load_family(path) == load_family(path)
