@@ -12,35 +12,31 @@ job's internals.
 from __future__ import annotations
 
 import hashlib
-from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
 import yaml
 
-from feeders.device_family import DeviceFamily, FamilyError, family_from_dict
+from feeders.device_family import (
+    DeviceFamily,
+    FamilyError,
+    family_from_dict,
+    packaged_families,
+    packaged_family,
+)
 from feeders.fields import FieldError, shown
-
-PACKAGED_FOLDER = "families"  # feeders/families/<name>.yaml, package data of the wheel
-
-
-def packaged_families() -> list[str]:
-    """The names of the families packaged with partfeeder."""
-    found = files("feeders").joinpath(PACKAGED_FOLDER).iterdir()
-    return sorted(e.name[: -len(".yaml")] for e in found if e.name.endswith(".yaml"))
 
 
 def family_file(given: str, base: Path) -> Path | None:
     """The family file ``given`` names: a file (relative to ``base``, the config's folder), or
-    a family packaged under that name (``fig1`` or ``fig1.yaml``); None when it is neither."""
+    a family packaged under that name (``fig1`` or ``fig1.yaml``,
+    :func:`feeders.device_family.packaged_family`); None when it is neither."""
     path = Path(given).expanduser()
     path = path if path.is_absolute() else base / path
     if path.is_file():
         return path.resolve()
-    name = given[: -len(".yaml")] if given.endswith(".yaml") else given
-    if "/" not in given and name in packaged_families():
-        return Path(str(files("feeders").joinpath(PACKAGED_FOLDER, f"{name}.yaml"))).resolve()
-    return None
+    packaged = None if "/" in given else packaged_family(given)
+    return packaged.resolve() if packaged is not None else None
 
 
 def family_of_text(text: str, name: str) -> DeviceFamily:

@@ -10,10 +10,10 @@ from experiments.family_config import (
     family_file,
     family_of_text,
     family_record,
-    packaged_families,
     read_family_field,
     text_digest,
 )
+from feeders.device_family import packaged_families
 from feeders.fields import FieldError
 
 
