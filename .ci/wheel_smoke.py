@@ -72,6 +72,18 @@ SHORTER: dict[str, tuple[str, str]] = {
         "partfeeder bench --verdict 20",
         "~1 min: 20 of the 200 designs",
     ),
+    "partfeeder run fig1-cup": (
+        "partfeeder run fig1-cup --designs 24",
+        "~1.5 min: 24 of the 1000 designs",
+    ),
+    "partfeeder optimize fig1-cup-optimize --from sweep/fig1-cup": (
+        "partfeeder optimize fig1-cup-short.yaml --from sweep/fig1-cup --out optimize/fig1-cup",
+        "~1 min, no budget flag: the shipped config with 16 evaluations, 10 final trials",
+    ),
+    "partfeeder bench --part": (
+        "partfeeder bench --part 5",
+        "~20 s: 5 of the 50 trials",
+    ),
 }
 
 # Configs written into the working directory: name -> (the shipped config it is made from,
@@ -85,6 +97,10 @@ CONFIGS: dict[str, tuple[str, list[tuple[str, str]]]] = {
     "optimize-short.yaml": (
         "optimize.yaml",
         [(r"budget: \d+", "budget: 32"), (r"^final: \{trials: \d+", "final: {trials: 20")],
+    ),
+    "fig1-cup-short.yaml": (
+        "fig1-cup-optimize.yaml",
+        [(r"budget: \d+", "budget: 16"), (r"^  trials: 120$", "  trials: 10")],
     ),
 }
 
@@ -186,6 +202,11 @@ CLAIMS: dict[str, Check] = {
         "optimize/optimize/evaluations.sqlite", "optimize/optimize/figures/overlay_*.png"
     ),
     "partfeeder bench --trial": contains(r"trial"),
+    "partfeeder run fig1-cup": files(*(f"sweep/fig1-cup/{f}" for f in SWEEP)),
+    "partfeeder optimize fig1-cup-optimize --from sweep/fig1-cup": files(
+        "optimize/fig1-cup/evaluations.sqlite", "optimize/fig1-cup/figures/strip_design_*.png"
+    ),
+    "partfeeder bench --part": contains(r"^cup / peg: "),
     "partfeeder bench --verdict": contains(r"^  wilson / screen \+ sprt: "),
     "partfeeder simulate --family fig1 --samples 40": contains(r"^open_trailing "),
     "partfeeder run --json": is_json,
