@@ -14,7 +14,7 @@ from contextlib import closing
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from experiments.cli.baseline import DEFAULT_BASELINE, add_baseline_argument, baseline_of
+from experiments.cli.baseline import add_baseline_argument, baseline_of
 from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, out_dir
 from experiments.names import EXECUTOR_NAMES
@@ -198,14 +198,14 @@ def _nearest_failing(db: Any) -> list[dict]:
     return [row for _, row in sorted(rows, key=lambda r: r[0])]
 
 
-def _baseline(text: str, config: OptimizeConfig) -> tuple[str, list[float]] | None:
+def _baseline(text: str | None, config: OptimizeConfig) -> tuple[str, list[float]] | None:
     """``--baseline`` for ``config``: the feeder's as :func:`baseline_of` reads it; with a
     family, None (its default) when not given, ``default``, or the family's values in its
     parameters' order."""
     family = config.device_family()
     if family is None:
         return baseline_of(text)
-    if text in (DEFAULT_BASELINE, "default"):
+    if text in (None, "default"):
         return None
     names = family.vector_names
     try:

@@ -10,7 +10,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TextIO
 
-from experiments.cli.baseline import DEFAULT_BASELINE, add_baseline_argument, baseline_of
+from experiments.cli.baseline import add_baseline_argument, baseline_of
 from experiments.cli.usage import UsageError
 
 MARGINS_AXES = 16  # the margins' axes (experiments.margins.axes): 12 parameters, mu, the part
@@ -147,7 +147,7 @@ def finish(
     from experiments.sweep.summary import summary_table
 
     quiet = bool(getattr(args, "quiet", False))
-    baseline = baseline_of(getattr(args, "baseline", DEFAULT_BASELINE))
+    baseline = baseline_of(getattr(args, "baseline", None))
     results = out / "results.sqlite"
     results_db.check_database(results)  # refused as the summary would refuse it
     rows = report_key(results)  # before the summary: a key never newer than what it keys

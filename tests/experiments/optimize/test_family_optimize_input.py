@@ -87,6 +87,23 @@ def test_feeder_with_a_family_exits_2_at_the_command_line(tmp_path: Path) -> Non
     assert not (tmp_path / "out" / "evaluations.sqlite").exists()
 
 
+@pytest.mark.parametrize("baseline", ["table3", "1,2,3"])
+def test_a_feeder_baseline_with_a_family_exits_2_at_the_command_line(
+    tmp_path: Path, baseline: str
+) -> None:
+    """``--baseline table3`` (the feeder's preset, also the option's value when not given to
+    the feeder) is no design of the family: it is refused, not read as the family's default."""
+    path = tmp_path / "cup.yaml"
+    path.write_text(yaml.safe_dump({"family": "fig1-cup", "methods": METHODS}))
+    done = run_cli(
+        "optimize", str(path), "--out", str(tmp_path / "out"), "--quiet", "--baseline", baseline
+    )
+    assert done.returncode == 2
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and f"--baseline = '{baseline}'" in lines[0] and "default" in lines[0]
+    assert not (tmp_path / "out" / "evaluations.sqlite").exists()
+
+
 @pytest.fixture(scope="module")
 def fig1_sweep(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A 12-design sweep of the fig1 family (a few seconds)."""
