@@ -2,7 +2,10 @@
 friction and the part's length, width and mass split, the interval over which P(both) stays
 at or above the target with the others at nominal (:mod:`experiments.margins`); prints the
 table and its cost, ``--json`` for scripts, ``--out`` for the chart and the JSON. A design
-that does not work has no margins: its verdict is printed (exit 0)."""
+that does not work has no margins: its verdict is printed (exit 0). ``--family`` (with
+``--values``) measures a device family's design instead: each of its parameters over the
+family's box, and friction (no part axes: the family's entry poses are written for its
+part)."""
 
 from __future__ import annotations
 
@@ -11,9 +14,10 @@ import json
 import os
 import time
 from pathlib import Path
+from typing import Any
 
 from experiments.cli.kernels import compile_once
-from experiments.cli.scenes import load_scene
+from experiments.cli.scenes import load_family_design, load_scene
 from experiments.cli.usage import UsageError, check_count, out_dir
 from experiments.names import PRESET_NAMES
 
@@ -23,11 +27,26 @@ DEFAULT_DROPS = 20
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument(
+    group = p.add_mutually_exclusive_group()
+    group.add_argument(
         "--design",
-        default="table3",
+        default=None,
         help=f"a paper preset ({', '.join(sorted(PRESET_NAMES))}) or the 12 values "
         "a,b,c,d,e,fx,fy,gx,gy,r,theta,alpha separated by commas (default: table3)",
+    )
+    group.add_argument(
+        "--family",
+        type=Path,
+        default=None,
+        help="a device family YAML file (docs/families.md), or the name of one packaged with "
+        "partfeeder (fig1, fig1-cup): the margins of its default design, or of --values, over "
+        "its parameters' box and friction",
+    )
+    p.add_argument(
+        "--values",
+        default=None,
+        help="with --family: the design's values, comma-separated in the order of the "
+        "family's parameters (default: the family's defaults)",
     )
     p.add_argument(
         "--drops",
@@ -56,18 +75,18 @@ def run(args: argparse.Namespace) -> int:
     workers = (os.cpu_count() or 1) if args.workers is None else args.workers
     check_count(workers, "--workers", MAX_WORKERS)
     out = out_dir(args.out)
-    scene = load_scene(args.design, None)
+    subject = _subject(args)
     compile_once(["dynamic"])
-    from experiments.margins.measure import MarginSettings, Subject
+    from experiments.margins.measure import MarginSettings
     from experiments.margins.run import margins_of
 
     settings = MarginSettings(drops=args.drops, target=args.target, seed=args.seed)
     t0 = time.perf_counter()
-    report = margins_of(Subject.of_scene(scene), settings, workers)
+    report = margins_of(subject, settings, workers)
     data = report.to_dict()
     files: list[str] = []
     if out is not None:
-        stem = f"margins_{scene.name}".replace(" ", "_")
+        stem = f"margins_{subject.name}".replace(" ", "_")
         if report.margins:
             from experiments.margins.figure import margins_chart
 
@@ -84,6 +103,30 @@ def run(args: argparse.Namespace) -> int:
     for f in files:
         print(f"wrote: {f}")
     return 0
+
+
+def _subject(args: argparse.Namespace) -> Any:
+    """The design ``--design`` or ``--family`` with ``--values`` names, checked (a family's
+    design must build): UsageError naming the option."""
+    if args.family is None:
+        from experiments.margins.measure import Subject
+
+        if args.values is not None:
+            raise UsageError("--values needs --family (a design's values are --design's)")
+        return Subject.of_scene(load_scene(args.design, None))
+    from experiments.cli.scenes import family_path
+    from experiments.margins.measure import FamilySubject
+    from feeders.feeder import DegenerateDesign
+
+    family, vector = load_family_design(args.family, args.values)
+    try:
+        family.build(vector)
+    except DegenerateDesign as exc:
+        raise UsageError(f"--values: the family's design cannot be built: {exc}") from None
+    except ValueError as exc:  # a value that is not finite
+        raise UsageError(f"--values: {exc}") from None
+    text = family_path(args.family).read_text(encoding="utf-8")
+    return FamilySubject.of_family(family, text, vector)
 
 
 def _number(value: float) -> str:

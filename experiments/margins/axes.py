@@ -5,15 +5,27 @@ they span the calibration's grid, docs/calibration.md, and what the feeder can h
 The part is taken as two uniform halves (:meth:`feeders.part.Peg.two_density`); its mass split
 (the heavy half's share of the mass, h) places the centre of mass (h - 1/2) L / 2 from the
 middle, so varying it moves the off-centre mass.
+
+A device family's design (:mod:`feeders.device_family`, issue 24) varies its own parameters,
+each over the family's box (``family.bounds()``), and the walls' mu over the same stated
+range; it has no part axes, whatever its part: a family's entry poses are expressions written
+for its part (where its centre of mass starts in chute A), so a longer or wider part would
+start where the family's own was placed, and the margin would measure that misplacement, not
+the device's tolerance of the part. The part axes stay the 12-parameter feeder's, whose
+entries follow the peg's dimensions.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from feeders.design import PARAMETER_MEANINGS, PARAMETER_NAMES, TABLE2_BOUNDS
 
-DESIGN = "design"
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
+
+DESIGN = "design"  # a design parameter: the feeder's 12 or a device family's
 FRICTION = "friction"
 PART = "part"
 
@@ -29,19 +41,23 @@ PART_MEANINGS = {
     "heavy_fraction": "heavy half's share of the mass (off-centre mass)",
 }
 ANGLES = ("theta", "alpha")
+TABLE2 = "Table 2"  # where an axis's box comes from
+STATED = "stated range"
+FAMILY_BOX = "the family's box"
+FAMILY_UNIT = "-"  # a family's parameter: a length or an angle (rad), as its file writes it
 
 
 @dataclass(frozen=True)
 class Axis:
     """One thing a margin varies: its ``name``, ``kind`` (design, friction or part), the box
-    the search stays within (``low``, ``high``), whether that box is Table 2's, its unit and
-    meaning."""
+    the search stays within (``low``, ``high``), where that box comes from (``source``:
+    Table 2, a stated range, a device family's box), its unit and meaning."""
 
     name: str
     kind: str
     low: float
     high: float
-    table2: bool
+    source: str
     unit: str
     meaning: str
 
@@ -56,11 +72,28 @@ def axes() -> tuple[Axis, ...]:
     for name in PARAMETER_NAMES:
         low, high = TABLE2_BOUNDS[name]
         unit = "rad" if name in ANGLES else "length"
-        out.append(Axis(name, DESIGN, low, high, True, unit, PARAMETER_MEANINGS[name]))
-    out.append(Axis("mu", FRICTION, *FRICTION_RANGE, False, "-", "walls' Coulomb friction"))
+        out.append(Axis(name, DESIGN, low, high, TABLE2, unit, PARAMETER_MEANINGS[name]))
+    out.append(friction_axis())
     for name, (low, high) in PART_RANGES.items():
         unit = "share" if name == "heavy_fraction" else "length"
-        out.append(Axis(name, PART, low, high, False, unit, PART_MEANINGS[name]))
+        out.append(Axis(name, PART, low, high, STATED, unit, PART_MEANINGS[name]))
+    return tuple(out)
+
+
+def friction_axis() -> Axis:
+    """The walls' Coulomb mu over its stated range."""
+    return Axis("mu", FRICTION, *FRICTION_RANGE, STATED, "-", "walls' Coulomb friction")
+
+
+def family_axes(family: DeviceFamily) -> tuple[Axis, ...]:
+    """Every axis of a device family's design, in order: its parameters, each over the
+    family's box (``family.bounds()``), then mu; no part axes (see the module's note)."""
+    meaning = f"parameter of {family.name}"
+    out = [
+        Axis(p.name, DESIGN, p.low, p.high, FAMILY_BOX, FAMILY_UNIT, meaning)
+        for p in family.parameters
+    ]
+    out.append(friction_axis())
     return tuple(out)
 
 

@@ -1,5 +1,6 @@
 """The margins chart a designer reads at a glance: one row per axis, its box (Table 2's for
-the 12 design parameters, the stated range for friction and the part) as a grey bar scaled to
+the 12 design parameters, a device family's own box for its parameters, the stated range for
+friction and the part) as a grey bar scaled to
 the same width, the allowed interval in colour over it, the nominal as a black mark, the
 interval's ends in units at the right. A row whose interval reaches an end of its box has that
 end drawn square (the margin may go further: the search stops at the box)."""
@@ -70,7 +71,8 @@ def margins_chart(data: dict, path: Path) -> Path:
     if 0 < design_rows < n:
         ax.axhline(n - design_rows - 0.5, color="#636363", lw=0.8, ls="--")
     ax.set_yticks(range(n))
-    ax.set_yticklabels([LABELS.get(r["parameter"], r["parameter"]) for r in reversed(rows)],
+    labels = {} if data.get("family") else LABELS  # a family's names are its own
+    ax.set_yticklabels([labels.get(r["parameter"], r["parameter"]) for r in reversed(rows)],
                        fontsize=10)  # fmt: skip
     ax.text(1.03, n - 0.45, "allowed", fontsize=9, fontweight="bold", va="bottom")
     ax.text(1.36, n - 0.45, "box", fontsize=9, fontweight="bold", va="bottom", color="#636363")
@@ -79,15 +81,22 @@ def margins_chart(data: dict, path: Path) -> Path:
     ax.set_xticks([0.0, 0.25, 0.5, 0.75, 1.0])
     ax.spines["bottom"].set_bounds(0.0, 1.0)
     ax.set_xticklabels(["low end", "1/4", "1/2", "3/4", "high end"], fontsize=9)
+    family = data.get("family")
+    boxes = (
+        f"{family['name']}'s box for its parameters, a stated range for μ"
+        if family
+        else "Table 2's range for a ... α, a stated range for μ and the part"
+    )
     ax.set_xlabel(
-        "position in the box (grey bar): Table 2's range for a ... α, a stated range for μ "
-        "and the part\nblue: allowed interval;  ◆ nominal;  | an end found inside the box "
-        "(a full bar reaches the box's edges)",
+        f"position in the box (grey bar): {boxes}\nblue: allowed interval;  ◆ nominal;  "
+        "| an end found inside the box (a full bar reaches the box's edges)",
         fontsize=9,
     )
+    classes = (data.get("verdict") or {}).get("success_classes") or ["heavy end down"]
+    success = " or ".join(classes)
     ax.set_title(
         f"{data['design']}: tolerance margins, one parameter at a time (others nominal)\n"
-        f"where P(both entries heavy end down) ≥ {data['target']:g} over "
+        f"where P(both entries {success}) ≥ {data['target']:g} over "
         f"{data['drops_per_value']} perturbed drops per entry",
         fontsize=11,
     )

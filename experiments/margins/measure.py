@@ -8,24 +8,37 @@ without tolerance, mu without its per-part factor; the part is not perturbed by 
 So two values differ by the axis only, and the comparison between them is not sampling noise.
 A trial whose drop ends inside a wall (a fault of the simulation) is left out and the next
 draw taken, as the verdict does.
+
+A device family's design (:class:`FamilySubject`, issue 24) is judged the same way on the
+family's verdict trials (:func:`experiments.drop.family_verdict.made_devices`: each parameter
+times its factor of the draw, the family's entries, ``parameters=n`` factors per draw): trial
+i at a value is the family verdict's trial i with the varied parameter's factor set to 1 and
+its value set exactly (mu: the friction factor set to 1). A value whose nominal device cannot
+be built is judged as the verdict judges an unbuildable made device: failed trials.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
+from experiments.drop.family_verdict import entry_names, made_devices
 from experiments.drop.perturbations import DropDraw, Perturbations, toleranced
 from experiments.drop.verdict import run_trial
 from experiments.drop.verdict_settings import VerdictSettings
+from experiments.family_config import family_of_text
 from experiments.margins.axes import DESIGN, FRICTION, PART, Axis
 from experiments.margins.search import Bracket, Estimate, bracket, required
 from feeders.design import PARAMETER_NAMES, DesignParameters
-from feeders.feeder import ORIENTATIONS, build_feeder
+from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.part import Peg
 from feeders.scene import InputSet, Scene
+
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
 
 
 @dataclass(frozen=True)
@@ -66,6 +79,21 @@ class Subject:
             scene.name,
         )
 
+    @property
+    def orientations(self) -> tuple[str, ...]:
+        """The entries a trial drops the part from: the feeder's two."""
+        return tuple(ORIENTATIONS)
+
+    @property
+    def parameters(self) -> int:
+        """Design factors per draw: the feeder's 12."""
+        return len(PARAMETER_NAMES)
+
+    @property
+    def values(self) -> dict[str, float]:
+        """The design's values by parameter name."""
+        return dict(zip(PARAMETER_NAMES, self.design.to_vector().tolist(), strict=True))
+
     def value(self, axis: Axis) -> float:
         """The nominal value of ``axis``."""
         if axis.kind == DESIGN:
@@ -73,6 +101,77 @@ class Subject:
         if axis.kind == FRICTION:
             return self.friction
         return float(getattr(self, axis.name))
+
+
+@dataclass(frozen=True)
+class FamilySubject:
+    """A device family's design whose margins are measured (issue 24), as plain data for a
+    worker: the family file's text (read by :func:`experiments.family_config.family_of_text`
+    with ``family_name``: a worker on another machine has no such file), the design's
+    ``vector`` in the family's parameter order, the parameters' and entries' names, the walls'
+    mu (the family's unless the caller gave another) and the design's label ``name``."""
+
+    text: str
+    family_name: str
+    vector: tuple[float, ...]
+    names: tuple[str, ...]
+    entries: tuple[str, ...]
+    friction: float
+    name: str
+
+    @classmethod
+    def of_family(
+        cls,
+        family: DeviceFamily,
+        text: str,
+        vector: Sequence[float],
+        name: str | None = None,
+        friction: float | None = None,
+    ) -> FamilySubject:
+        """The subject of ``family`` (read from ``text``: ValueError when the text is another
+        family) at ``vector``; ``name`` defaults to the family's name."""
+        if family_of_text(text, family.name) != family:
+            raise ValueError(f"the text given is not the family {family.name}'s")
+        values = family.values(vector)
+        return cls(
+            text,
+            family.name,
+            tuple(float(v) for v in values.values()),
+            tuple(values),
+            entry_names(family),
+            family.friction if friction is None else float(friction),
+            family.name if name is None else name,
+        )
+
+    def family(self) -> DeviceFamily:
+        """The family, read from its text."""
+        return family_of_text(self.text, self.family_name)
+
+    @property
+    def orientations(self) -> tuple[str, ...]:
+        """The entries a trial drops the part from: the family's, in its file's order."""
+        return self.entries
+
+    @property
+    def parameters(self) -> int:
+        """Design factors per draw: one per parameter of the family."""
+        return len(self.names)
+
+    @property
+    def values(self) -> dict[str, float]:
+        """The design's values by parameter name."""
+        return dict(zip(self.names, self.vector, strict=True))
+
+    def value(self, axis: Axis) -> float:
+        """The nominal value of ``axis`` (a parameter of the family, or mu)."""
+        if axis.kind == DESIGN:
+            return self.vector[self.names.index(axis.name)]
+        if axis.kind == FRICTION:
+            return self.friction
+        raise ValueError(f"a device family's design has no part axis ({axis.name})")
+
+
+MarginSubject = Subject | FamilySubject
 
 
 @dataclass(frozen=True)
@@ -94,8 +193,11 @@ class MarginSettings:
         )
 
 
-def made_at(subject: Subject, axis: Axis, value: float) -> Callable[[DropDraw], Scene]:
-    """The feeder as made for one trial's draw with ``axis`` at ``value`` exactly."""
+def made_at(subject: MarginSubject, axis: Axis, value: float) -> Callable[[DropDraw], Scene]:
+    """The feeder (or the family's device) as made for one trial's draw with ``axis`` at
+    ``value`` exactly."""
+    if isinstance(subject, FamilySubject):
+        return family_made_at(subject, axis, value)
     design, friction = subject.design, subject.friction
     length, width, heavy = subject.length, subject.width, subject.heavy_fraction
     exact = -1
@@ -124,7 +226,42 @@ def made_at(subject: Subject, axis: Axis, value: float) -> Callable[[DropDraw], 
     return make
 
 
-def estimate(subject: Subject, axis: Axis, value: float, settings: MarginSettings) -> Estimate:
+def family_made_at(subject: FamilySubject, axis: Axis, value: float) -> Callable[[DropDraw], Scene]:
+    """The family's device as the verdict makes it for one trial's draw
+    (:func:`experiments.drop.family_verdict.made_devices`), with the draw's factor of the
+    axis varied set to 1 and the axis at ``value``: a parameter's value, or mu. When the
+    device at that value cannot be built, every trial is refused as the verdict refuses an
+    unbuildable made device (:class:`feeders.feeder.DegenerateDesign`)."""
+    vector = list(subject.vector)
+    friction, exact = subject.friction, -1
+    if axis.kind == DESIGN:
+        exact = subject.names.index(axis.name)
+        vector[exact] = value
+    elif axis.kind == FRICTION:
+        friction = value
+    else:
+        raise ValueError(f"a device family's design has no part axis ({axis.name})")
+    try:
+        make = made_devices(subject.family(), vector, friction=friction)
+    except DegenerateDesign as exc:
+        refused = exc
+
+        def unbuildable(_: DropDraw) -> Scene:
+            raise refused
+
+        return unbuildable
+
+    def make_exact(d: DropDraw) -> Scene:
+        factors = tuple(1.0 if k == exact else f for k, f in enumerate(d.design_factors))
+        scale = 1.0 if axis.kind == FRICTION else d.friction_factor
+        return make(dataclasses.replace(d, design_factors=factors, friction_factor=scale))
+
+    return make_exact
+
+
+def estimate(
+    subject: MarginSubject, axis: Axis, value: float, settings: MarginSettings
+) -> Estimate:
     """P(both) with ``axis`` at ``value`` over the first ``settings.drops`` trials (draws
     0, 1, ... of ``settings.seed``, faults skipped), stopped as soon as so many failed that
     the target can no longer be reached (the same inside/outside answer, fewer drops)."""
@@ -134,7 +271,9 @@ def estimate(subject: Subject, axis: Axis, value: float, settings: MarginSetting
     allowed = planned - required(settings.target, planned)  # failures the target allows
     successes = counted = index = 0
     while counted < planned and index < 2 * planned:
-        trial = run_trial(make, ORIENTATIONS, verdict, settings.seed, index)
+        trial = run_trial(
+            make, subject.orientations, verdict, settings.seed, index, subject.parameters
+        )
         index += 1
         if trial.fault:
             continue
@@ -149,7 +288,7 @@ def estimate(subject: Subject, axis: Axis, value: float, settings: MarginSetting
 class AxisJob:
     """One axis of one subject: a job for a worker (plain data)."""
 
-    subject: Subject
+    subject: MarginSubject
     axis: Axis
     settings: MarginSettings
 
@@ -180,7 +319,8 @@ class AxisMargin:
 
 def measure_axis(job: AxisJob) -> AxisMargin:
     """The margin of ``job.axis``: the nominal estimate, then the search toward each end of
-    the box (Table 2's, widened to hold a nominal outside it)."""
+    the box (the axis's: Table 2's, a stated range or the family's; widened to hold a nominal
+    outside it)."""
     t0 = time.perf_counter()
     subject, axis, settings = job.subject, job.axis, job.settings
     nominal_value = subject.value(axis)

@@ -1,6 +1,9 @@
 """The margins of one design: its passive verdict first (a design that does not work has no
 margins), then every axis's margin (:func:`experiments.margins.measure.measure_axis`), one
-job per axis in the local worker pool."""
+job per axis in the local worker pool. The design is the 12-parameter feeder's
+(:class:`~experiments.margins.measure.Subject`: its parameters, mu and the peg) or a device
+family's (:class:`~experiments.margins.measure.FamilySubject`: its parameters and mu, its
+verdict :func:`experiments.drop.family_verdict.family_verdict`)."""
 
 from __future__ import annotations
 
@@ -8,13 +11,19 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from experiments.drop.family_verdict import family_verdict
 from experiments.drop.verdict import Verdict, design_verdict
 from experiments.executors.local import map_jobs
-from experiments.margins.axes import axes
-from experiments.margins.measure import AxisJob, AxisMargin, MarginSettings, Subject, measure_axis
+from experiments.margins.axes import Axis, axes, family_axes
+from experiments.margins.measure import (
+    AxisJob,
+    AxisMargin,
+    FamilySubject,
+    MarginSettings,
+    MarginSubject,
+    measure_axis,
+)
 from experiments.margins.search import FIRST_STEP, RESOLUTION
-from feeders.design import PARAMETER_NAMES
-from feeders.feeder import ORIENTATIONS
 from feeders.part import Peg
 
 MEANING = (
@@ -30,7 +39,7 @@ class MarginsReport:
     """The margins of a subject (empty when its verdict is not "works"), the verdict, and the
     cost: trials (a perturbed made feeder, one drop from each entry) and wall time (s)."""
 
-    subject: Subject
+    subject: MarginSubject
     settings: MarginSettings
     verdict: Verdict
     margins: tuple[AxisMargin, ...]
@@ -57,7 +66,7 @@ class MarginsReport:
                     "unit": a.unit,
                     "nominal": s.value(a),
                     "box": list(m.box),
-                    "box_source": "Table 2" if a.table2 else "stated range",
+                    "box_source": a.source,
                     "interval": None if interval is None else list(interval),
                     "nominal_estimate": m.nominal.to_dict(),
                     "low": None if m.low is None else m.low.to_dict(),
@@ -66,15 +75,26 @@ class MarginsReport:
                     "wall_time_s": m.wall_time,
                 }
             )
-        return {
-            "design": s.name,
-            "values": dict(zip(PARAMETER_NAMES, s.design.to_vector().tolist(), strict=True)),
-            "part": {
+        if isinstance(s, FamilySubject):
+            part: dict | None = None  # the family's own: no part axes
+            family: dict | None = {
+                "name": s.family_name,
+                "parameters": list(s.names),
+                "entries": list(s.entries),
+            }
+        else:
+            part = {
                 "length": s.length,
                 "width": s.width,
                 "mass": s.mass,
                 "heavy_fraction": s.heavy_fraction,
-            },
+            }
+            family = None
+        return {
+            "design": s.name,
+            "family": family,
+            "values": s.values,
+            "part": part,
             "friction": s.friction,
             "target": self.settings.target,
             "drops_per_value": self.settings.drops,
@@ -90,24 +110,33 @@ class MarginsReport:
             "margins": rows,
             "cost": {
                 "trials": self.trials,
-                "drops": self.trials * len(ORIENTATIONS),
+                "drops": self.trials * len(s.orientations),
                 "wall_time_s": self.wall_time,
                 "workers": self.workers,
             },
         }
 
 
-def margins_of(
-    subject: Subject,
-    settings: MarginSettings,
-    workers: int = 1,
-    on_axis: Callable[[AxisMargin], object] | None = None,
-) -> MarginsReport:
-    """The verdict of ``subject`` (sequential, as ``simulate --samples``), then, if it works,
-    the margin of every axis (:func:`experiments.margins.axes.axes`) on ``workers`` processes;
-    ``on_axis`` is called here as each axis finishes."""
-    t0 = time.perf_counter()
-    verdict = design_verdict(
+def axes_of(subject: MarginSubject) -> tuple[Axis, ...]:
+    """The axes of ``subject``: the feeder's 16 (:func:`experiments.margins.axes.axes`) or a
+    family's parameters and mu (:func:`experiments.margins.axes.family_axes`)."""
+    if isinstance(subject, FamilySubject):
+        return family_axes(subject.family())
+    return axes()
+
+
+def design_verdict_of(subject: MarginSubject, settings: MarginSettings) -> Verdict:
+    """The verdict of ``subject`` at nominal on the margins' seed, as ``simulate --samples``
+    gives it (the family's verdict for a family's design)."""
+    if isinstance(subject, FamilySubject):
+        return family_verdict(
+            subject.family(),
+            subject.vector,
+            settings.verdict_settings(),
+            seed=settings.seed,
+            friction=subject.friction,
+        )
+    return design_verdict(
         subject.design,
         Peg.two_density(subject.length, subject.width, subject.mass, subject.heavy_fraction),
         subject.friction,
@@ -118,9 +147,22 @@ def margins_of(
         inputs=subject.inputs,
         name=subject.name,
     )
+
+
+def margins_of(
+    subject: MarginSubject,
+    settings: MarginSettings,
+    workers: int = 1,
+    on_axis: Callable[[AxisMargin], object] | None = None,
+) -> MarginsReport:
+    """The verdict of ``subject`` (sequential, as ``simulate --samples``), then, if it works,
+    the margin of every axis (:func:`axes_of`) on ``workers`` processes; ``on_axis`` is called
+    here as each axis finishes."""
+    t0 = time.perf_counter()
+    verdict = design_verdict_of(subject, settings)
     margins: list[AxisMargin] = []
     if verdict.works:
-        jobs = [AxisJob(subject, axis, settings) for axis in axes()]
+        jobs = [AxisJob(subject, axis, settings) for axis in axes_of(subject)]
         margins = map_jobs(
             measure_axis,
             jobs,
