@@ -1,0 +1,105 @@
+"""``partfeeder margins --family`` (issue 24): a device family's design's margins over its
+parameters and mu, as JSON end to end; bad ``--family`` / ``--values`` input is one line on
+stderr naming the option, exit status 2."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from cli_process import noise, run_cli
+
+OPTIMUM = "0.4060,1.2148,1.2578,-0.8084,1.6875,0.1328"  # fig1-cup's optimum (116/120)
+NAMES = ["theta", "chute_width", "exit_width", "pin_x", "pin_y", "pin_r"]
+
+
+def test_a_familys_margins_as_json_over_its_parameters_and_mu(tmp_path):
+    done = run_cli(
+        "margins", "--family", "fig1-cup", "--values", OPTIMUM, "--drops", "2",
+        "--workers", "2", "--json", "--out", str(tmp_path / "m"),
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert noise(done.stderr) == ""
+    data = json.loads(done.stdout)
+    assert data["works"] is True and data["design"] == "fig1-cup"
+    assert data["family"] == {
+        "name": "fig1-cup",
+        "parameters": NAMES,
+        "entries": ["open_leading", "open_trailing"],
+    }
+    assert data["part"] is None  # no part axes for a family
+    assert list(data["values"].values()) == [float(v) for v in OPTIMUM.split(",")]
+    assert [row["parameter"] for row in data["margins"]] == [*NAMES, "mu"]
+    assert [row["box_source"] for row in data["margins"]] == ["the family's box"] * 6 + [
+        "stated range"
+    ]
+    assert [row["box"] for row in data["margins"][:6]] == [
+        [0.3, 0.9], [1.1, 1.3], [1.1, 1.3], [-1.8, 0.6], [0.3, 2.8], [0.1, 0.3],
+    ]  # fmt: skip
+    for row in data["margins"]:
+        if row["interval"] is not None:
+            low, high = row["interval"]
+            assert row["box"][0] <= low <= row["nominal"] <= high <= row["box"][1]
+    cost = data["cost"]
+    assert cost["drops"] == 2 * cost["trials"] > 0
+    written = json.loads((tmp_path / "m" / "margins_fig1-cup.json").read_text())
+    assert written["margins"] == data["margins"]
+    assert (tmp_path / "m" / "margins_fig1-cup.png").stat().st_size > 0
+
+
+BAD = {
+    "unknown family": (
+        ["--family", "nosuch"],
+        "--family: 'nosuch' is neither a file nor a packaged family",
+    ),
+    "too few values": (
+        ["--family", "fig1-cup", "--values", "0.4,1.2"],
+        "--values: 2 numbers given; the family fig1-cup has 6 parameters",
+    ),
+    "not numbers": (
+        ["--family", "fig1-cup", "--values", "a,b,c,d,e,f"],
+        "--values = 'a,b,c,d,e,f': expected 6 comma-separated numbers",
+    ),
+    "not finite": (
+        ["--family", "fig1-cup", "--values", "nan,1.2,1.2,-0.8,1.6,0.13"],
+        "--values: fig1-cup: parameter theta = nan is not finite",
+    ),
+    "cannot be built": (
+        ["--family", "fig1-cup", "--values", "0.4,1.2,1.2,0.6,0.3,0.3"],
+        "--values: the family's design cannot be built: pin B sinks into the funnel",
+    ),
+    "values without a family": (
+        ["--values", "0.4,1.2"],
+        "--values needs --family",
+    ),
+    "a design and a family": (
+        ["--design", "table3", "--family", "fig1-cup"],
+        "argument --family: not allowed with argument --design",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", BAD)
+def test_bad_family_input_is_one_line_and_exit_2(case):
+    args, expected = BAD[case]
+    done = run_cli("margins", *args, timeout=300)
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert lines[0].startswith("partfeeder margins: error: ")
+    assert expected in lines[0]
+    assert done.stdout == ""
+
+
+def test_a_family_file_that_cannot_be_read_is_one_line_naming_the_file_and_field(tmp_path):
+    path = tmp_path / "broken.yaml"
+    path.write_text(
+        "parameters:\n  w: {low: 1, high: 2, default: 1.5}\n"
+        "pieces:\n  - circle: {centre: [0, 0], radius: zeta}\n"
+        "entries:\n  a: [0, 3, 0]\n"
+        "goal: {x: [-1, 1], y: [-3, -2], yaw: 0, yaw_tol: 0.3}\n"
+    )
+    done = run_cli("margins", "--family", str(path), timeout=300)
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and "broken.yaml" in lines[0] and "zeta" in lines[0], done.stderr
