@@ -158,6 +158,35 @@ class GoalSpec:
     orientations: tuple[str, ...] = ()
 
 
+def named_values(
+    family: str, names: Sequence[str], vector: Mapping[str, float] | Sequence[float] | np.ndarray
+) -> dict[str, float]:
+    """``vector`` (a mapping of every name, or one number per name in ``names``' order) as a
+    mapping of finite floats; ``ValueError`` naming ``family`` and the parameter otherwise."""
+    if isinstance(vector, Mapping):
+        unknown = sorted(set(map(str, vector)) - set(names))
+        missing = [n for n in names if n not in vector]
+        if unknown or missing:
+            raise ValueError(
+                f"{family}: parameters {shown(unknown)} are unknown and {missing} missing; "
+                f"the family's parameters are {list(names)}"
+            )
+        raw = [vector[n] for n in names]
+    else:
+        raw = list(np.asarray(vector, dtype=float).reshape(-1))
+        if len(raw) != len(names):
+            raise ValueError(
+                f"{family}: {len(raw)} values for {len(names)} parameters {list(names)}"
+            )
+    out = {}
+    for name, value in zip(names, raw, strict=True):
+        number = float(value)
+        if not math.isfinite(number):
+            raise ValueError(f"{family}: parameter {name} = {number!r} is not finite")
+        out[name] = number
+    return out
+
+
 @dataclass(frozen=True)
 class DeviceFamily:
     """A parametric device: named parameters with their box and defaults, pieces, entries
@@ -209,29 +238,12 @@ class DeviceFamily:
         order) as a mapping of finite floats; ``ValueError`` naming the parameter otherwise. A
         value may lie outside the box (a perturbation of a design at its edge): the rules say
         what can be built."""
-        names = self.vector_names
-        if isinstance(vector, Mapping):
-            unknown = sorted(set(map(str, vector)) - set(names))
-            missing = [n for n in names if n not in vector]
-            if unknown or missing:
-                raise ValueError(
-                    f"{self.name}: parameters {shown(unknown)} are unknown and {missing} missing; "
-                    f"the family's parameters are {list(names)}"
-                )
-            raw = [vector[n] for n in names]
-        else:
-            raw = list(np.asarray(vector, dtype=float).reshape(-1))
-            if len(raw) != len(names):
-                raise ValueError(
-                    f"{self.name}: {len(raw)} values for {len(names)} parameters {list(names)}"
-                )
-        out = {}
-        for name, value in zip(names, raw, strict=True):
-            number = float(value)
-            if not math.isfinite(number):
-                raise ValueError(f"{self.name}: parameter {name} = {number!r} is not finite")
-            out[name] = number
-        return out
+        return named_values(self.name, self.vector_names, vector)
+
+    def made_bounds(self) -> None:
+        """What a made device's values are kept within: nothing for a family (its rules
+        decide what can be built; :func:`experiments.drop.perturbations.toleranced_values`)."""
+        return None
 
     def build(self, vector: Mapping[str, float] | Sequence[float] | np.ndarray) -> Scene:
         """The scene of this parameter vector, or :class:`DegenerateDesign` with the reason and

@@ -33,27 +33,29 @@ from experiments.drop.screen import Screen, screen_of
 from experiments.drop.screen_settings import ScreenSettings
 from experiments.drop.verdict import Verdict, verdict_of
 from experiments.drop.verdict_settings import VerdictSettings
-from feeders.device_family import DeviceFamily
+from feeders.feeder_family import Family
 from feeders.part import Peg
 from feeders.scene import Scene
 
 Vector = Mapping[str, float] | Sequence[float] | np.ndarray
 
 
-def entry_names(family: DeviceFamily) -> tuple[str, ...]:
+def entry_names(family: Family) -> tuple[str, ...]:
     """The family's entry orientations, in the file's order: the verdict's orientations."""
     return tuple(name for name, _ in family.entries)
 
 
 def made_devices(
-    family: DeviceFamily,
+    family: Family,
     values: Vector,
     part: Peg | None = None,
     friction: float | None = None,
 ) -> Callable[[DropDraw], Scene]:
     """The device of ``values`` (n numbers in ``family.vector_names`` order, or a mapping) as
     made for one trial's draw, for :func:`experiments.drop.verdict.run_trial`: each parameter
-    times its design factor, unclamped (the rules decide), the walls' friction (None: the
+    times its design factor, kept within ``family.made_bounds()`` (a YAML family's are none:
+    its rules decide; the paper's feeder, :class:`feeders.feeder_family.FeederFamily`, keeps
+    within what can be built, as its verdict always has), the walls' friction (None: the
     family's) times the draw's friction factor; ``part`` (None: the family's) replaces the
     family's part. Raises :class:`feeders.feeder.DegenerateDesign` at once if the nominal
     vector cannot be built, ``ValueError`` if the vector is not the family's."""
@@ -64,8 +66,11 @@ def made_devices(
     family.build(nominal)
     mu = family.friction if friction is None else float(friction)
 
+    limits = family.made_bounds()
+    low, high = limits if limits is not None else (None, None)
+
     def make_scene(d: DropDraw) -> Scene:
-        made = toleranced_values(nominal, d.design_factors[:n])
+        made = toleranced_values(nominal, d.design_factors[:n], low, high)
         scene = family.build(made)
         return dataclasses.replace(scene, friction=mu * d.friction_factor)
 
@@ -73,7 +78,7 @@ def made_devices(
 
 
 def family_verdict(
-    family: DeviceFamily,
+    family: Family,
     values: Vector,
     settings: VerdictSettings | None = None,
     seed: int = 0,
@@ -91,7 +96,7 @@ def family_verdict(
 
 
 def family_screen(
-    family: DeviceFamily,
+    family: Family,
     values: Vector,
     settings: ScreenSettings | None = None,
     seed: int = 0,
