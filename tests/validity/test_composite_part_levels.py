@@ -17,7 +17,7 @@ import pytest
 import shapely
 
 from feeders.composite_part import CompositePart, stable_poses
-from feeders.cup import cup_part
+from feeders.cup import CUP_HEIGHT, CUP_WALL, cup_part
 from feeders.part_shape import part_geometry
 from feeders.scene import Goal, Scene
 from feeders.shapes import Obstacles
@@ -214,3 +214,25 @@ def test_the_cup_slides_base_down_over_its_own_flat_joints_as_coulomb_says():
     assert x == pytest.approx(v0**2 / (2 * mu * g), rel=5e-3)
     assert np.max(np.abs(run.states[:, 2] + math.pi / 2)) < 1e-3
     assert y == pytest.approx(height, abs=1e-3)
+
+
+def test_the_cup_comes_down_over_a_post_and_rests_on_it_flush():
+    """Open end down over a post 0.4 wide and 0.9 tall (the opening is 0.7 wide, 0.75 deep),
+    0.1 off its axis: the post goes into the opening and the base's inner face comes down flat
+    on the post's top (flush faces, inside the part's concave opening). The centre of mass is
+    over the post, so statics says it hangs there: yaw pi/2, centre of mass 0.195 (the inner
+    face's distance from it) below the post's top, the rims clear of the floor. The post is
+    never deeper in the cup than the tolerance (shapely); energy never rises."""
+    post = np.array([[-0.2, 0.0], [0.2, 0.0], [0.2, 0.9], [-0.2, 0.9]])
+    scene = _scene(CUP, Obstacles((FLOOR, post), np.zeros((0, 3))))
+    level = DynamicLevel(scene)
+    start = level.state_of_pose((0.1, 1.4, math.pi / 2))
+    run = level.simulate(start, duration=4.0, rest_speed=1e-3, rest_time=0.2)
+    assert run.end == "at_rest"
+    x, y, yaw = run.final[:3]
+    assert abs(math.remainder(yaw - math.pi / 2, 2 * math.pi)) < 1e-3
+    inner = CUP_HEIGHT - 0.555 - CUP_WALL  # the base's inner face, above the centre of mass
+    assert y == pytest.approx(0.9 - inner, abs=1e-3)
+    assert abs(x - 0.1) < 0.05
+    assert _depth(scene, CUP, run.states[::5]) < DEPTH_TOL
+    assert run.energy_rise() <= 1e-9
