@@ -13,8 +13,9 @@ draws against evaluations, every seed). The numbers come from the results of
 
 A device family's optimisation (results with ``family``) shows its own parameters and box, the
 optimum beside the family's default on the same fresh draws, and the strips of both designs'
-nominal drops from the family's entries; the comparison section and the margins are the
-12-parameter feeder's, and the page says so where they would stand.
+nominal drops from the family's entries and the optimum's margins over the family's parameters
+and friction; the comparison section is the 12-parameter feeder's, and the page says so where
+it would stand.
 """
 
 from __future__ import annotations
@@ -414,10 +415,18 @@ def _family_box(results: dict[str, Any]) -> str:
     title = "What to build: the optimum" if verdict.get("works") else "No design confirmed"
     values = (results.get(OPTIMUM) or {}).get("values") or {}
     shown = ", ".join(f"{n} = {v:.4f}" for n, v in values.items())
+    margins = results.get("margins")
+    tolerance = (
+        f'</p><p>Tolerance: {html.escape(margins_sentence(margins))} (<a href="#margins">'
+        "margins</a>)."
+        if margins
+        else ""
+    )
     return (
         f'<div class="{kind}"><h2>{html.escape(title)}</h2><p>'
         + html.escape(family_sentence(results))
         + (f"</p><p>The optimum: {html.escape(shown)}." if shown else "")
+        + tolerance
         + "</p></div>"
     )
 

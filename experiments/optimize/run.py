@@ -18,8 +18,9 @@
    differences over Table 2's box, the feeders drawn over each other) is the 12-parameter
    feeder's, so a family's results have the two verdicts without it.
 5. When the optimum works on those draws, its tolerance margins
-   (:mod:`experiments.optimize.tolerance`): the 12-parameter feeder's only (the margins'
-   axes are its parameters, friction and the peg's dimensions).
+   (:mod:`experiments.optimize.tolerance`; a device family's, :func:`family_margins`): the
+   feeder's axes are its 12 parameters, friction and the peg's dimensions, a family's its
+   parameters over its box and friction (:mod:`experiments.margins.axes`).
 
 Every evaluation, verdict and margin is stored as it finishes
 (:mod:`experiments.optimize.store`): a run started again in the same directory repeats none
@@ -204,10 +205,14 @@ def optimise(
             ev.batch(baseline_run(base_key), 1, [base_values])
             optimum = _validate(ev, config, _runs(config))
             _verdicts(ev, config, {OPTIMUM: optimum, label: base_key}, 1)
-        if margins and space.family is None and _works(db, config, OPTIMUM):
+        if margins and _works(db, config, OPTIMUM):
             measured = store.stored_margins(db, optimum, settings_key(config)) is not None
-            on_axis = None if measured else _axis_progress(progress)
-            optimum_margins(db, config, optimum, OPTIMUM, config.workers, on_axis=on_axis)
+            if space.family is None:
+                on_axis = None if measured else _axis_progress(progress)
+                optimum_margins(db, config, optimum, OPTIMUM, config.workers, on_axis=on_axis)
+            else:
+                on_axis = None if measured else _axis_progress(progress, len(space.names) + 1)
+                family_margins(db, config, space.family, optimum, OPTIMUM, config.workers, on_axis)
         wall = time.perf_counter() - t0
         out_results = results(db, config, starts, wall, baseline)
         out_results["new_evaluations"] = ev.computed
@@ -226,19 +231,50 @@ def _works(db, config: OptimizeConfig, label: str) -> bool:
     return stored is not None and verdict_of_trials(stored["trial_data"], config.final_target).works
 
 
-def _axis_progress(progress: Progress | None) -> AxisCallback | None:
-    """The margins' progress: a ``margins`` event with the fixed number of axes, then an
-    ``axis`` event as each finishes."""
+def _axis_progress(progress: Progress | None, axes: int | None = None) -> AxisCallback | None:
+    """The margins' progress: a ``margins`` event with the fixed number of axes (``axes``;
+    None: the feeder's), then an ``axis`` event as each finishes."""
     if progress is None:
         return None
     from experiments.optimize.tolerance import AXES
 
-    progress("margins", {"axes": AXES})
+    progress("margins", {"axes": AXES if axes is None else axes})
 
     def on_axis(margin: Any) -> None:
         progress("axis", {"axis": margin.axis.name})
 
     return on_axis
+
+
+def family_margins(
+    db,
+    config: OptimizeConfig,
+    family: DeviceFamily,
+    key: str,
+    label: str = OPTIMUM,
+    workers: int = 1,
+    on_axis: AxisCallback | None = None,
+    measure: Any = None,
+) -> dict[str, Any]:
+    """The margins of the device family's design ``key``, named ``label``, as
+    :func:`experiments.optimize.tolerance.optimum_margins` gives the feeder's: the same
+    settings and store, the axes the family's parameters over its box and friction
+    (:class:`experiments.margins.measure.FamilySubject`, the family's text from the config).
+    ``measure`` replaces :func:`experiments.margins.run.margins_of` (tests count calls)."""
+    digest = settings_key(config)
+    stored = store.stored_margins(db, key, digest)
+    if stored is not None:
+        return stored
+    from experiments.margins.measure import FamilySubject
+    from experiments.margins.run import margins_of
+    from experiments.optimize.tolerance import margin_settings
+
+    run = measure or margins_of
+    vector = store.design_of_key(key)
+    subject = FamilySubject.of_family(family, config.family_yaml, vector, name=label)
+    data = run(subject, margin_settings(config), workers, on_axis=on_axis).to_dict()
+    store.record_margins(db, key, digest, data)
+    return data
 
 
 def evaluations_total(config: OptimizeConfig, starts: int) -> int:
@@ -436,7 +472,7 @@ def results(
     (:func:`experiments.optimize.comparison.stored_comparison`) and the optimum's ``margins``
     (None when not measured, ``margins_absent`` says why). A device family's: ``family``
     (name, parameters, box, entries), its own parameter names, no comparison section
-    (``comparison_absent`` says why) and no margins."""
+    (``comparison_absent`` says why), margins over its own parameters."""
     space = designed(config)
     values = store.evaluations(db)
     calls = store.calls(db)
@@ -549,19 +585,12 @@ FAMILY_NO_COMPARISON = (
     "family's optimum and baseline (its default) are compared by their verdicts on the same "
     "fresh draws in the table of Eq. 10 and the verdicts"
 )
-FAMILY_NO_MARGINS = (
-    "the margins are the 12-parameter feeder's (each of its parameters within Table 2's box, "
-    "the walls' friction, the peg's length, width and mass split); a device family's "
-    "per-parameter search is not yet wired (docs/families.md)"
-)
 
 
 def _margins(
     db, config: OptimizeConfig, optimum: dict[str, Any] | None, space: Designed
 ) -> tuple[dict[str, Any] | None, str | None]:
     """The optimum's stored margins, or None and why there are none."""
-    if space.family is not None:
-        return None, FAMILY_NO_MARGINS
     if optimum is None:
         return None, "there is no optimum yet"
     verdict = optimum.get("verdict") or {}
@@ -570,7 +599,7 @@ def _margins(
             f"the optimum does not work on its {verdict.get('drops', '?')} fresh trials "
             f"(decision: {verdict.get('decision', 'none')}), so it has no margins"
         )
-    key = store.design_key([optimum["values"][n] for n in PARAMETER_NAMES])
+    key = store.design_key([optimum["values"][n] for n in space.names])
     stored = store.stored_margins(db, key, settings_key(config))
     if stored is None:
         return None, "they were not measured (the run was stopped before, or told not to)"
