@@ -5,6 +5,11 @@ the start state, the input (a velocity for the geometric and kinematic levels, a
 the dynamic one), the step h and duration (s), the part's mass and moment of inertia and the
 friction coefficient (overriding the scene's), and where it came from: the seed, its index
 and its family and placement (names only; the rest is already in the numbers).
+
+The scene's ``part:`` is the peg's keys or a composite part (issue 24: ``cup``, or the
+``pieces`` / ``outline`` of :func:`feeders.composite_part.part_from_dict`), read as
+:mod:`experiments.stress.parts` says; a composite part that cannot be built is refused when the
+case is read, naming ``case.scene.part...``.
 """
 
 from __future__ import annotations
@@ -63,6 +68,7 @@ class Case:
             raise CaseError(f"case.level = {level!r}; allowed: {', '.join(LEVEL_NAMES)}")
         if not isinstance(data["scene"], dict):
             raise CaseError("case.scene: expected a scene mapping")
+        _check_part(data["scene"].get("part"))
         size = 3 if level == "geometric" else 6
         state = _numbers(data["state"], "state", size)
         control = _numbers(data["control"], "control", 3)
@@ -81,6 +87,17 @@ class Case:
             inertia=_positive(data["inertia"], "inertia", 1e-12, 1e12),
             friction=_positive(data["friction"], "friction", 0.0, 10.0),
         )
+
+
+def _check_part(spec: Any) -> None:
+    """A composite ``part:`` builds (the peg's keys are checked with the rest of the scene)."""
+    from experiments.stress.parts import is_composite, read_part  # numpy, shapely: when read
+
+    if is_composite(spec):
+        try:
+            read_part(spec)
+        except FieldError as exc:
+            raise CaseError(f"case.scene.{exc}") from None
 
 
 def _integer(value: Any, name: str) -> int:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from experiments.stress.case import LEVEL_NAMES
 
-MAX_CASES = 10_000_000
+MAX_CASES = 10_000_000  # also where the composite-part cases' indices begin (generate.py)
 MAX_WORKERS = 256
 MAX_SEED = 2**32 - 1  # the seeds numpy draws from, as the verdict's and the sweeps' seeds
 
@@ -22,6 +22,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``partfeeder stress``."""
     parser.add_argument("--seed", type=int, default=0, help="seed of the cases (default 0)")
     parser.add_argument("--cases", type=int, default=300, help="number of cases (default 300)")
+    parser.add_argument(
+        "--composite",
+        type=int,
+        default=None,
+        help="composite-part cases run besides the peg's --cases (a scaled cup, a non-convex "
+        "outline, a plate with discs; default a third of --cases; 0: the peg's alone)",
+    )
     parser.add_argument(
         "--levels",
         default=",".join(LEVEL_NAMES),
@@ -36,7 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=int,
         default=None,
         help="instead: run case N of --seed alone; with --out its file is written, "
-        "whatever its result (a case to --replay, or to send with a report)",
+        "whatever its result (a case to --replay, or to send with a report); "
+        f"composite case j is case {MAX_CASES} + j",
     )
     parser.add_argument("--replay", type=Path, default=None, help="run one case file again")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
@@ -63,8 +71,15 @@ def _check(args: argparse.Namespace) -> tuple[str, ...]:
         )
     if not 0 <= args.seed <= MAX_SEED:
         raise ValueError(f"--seed = {args.seed} is outside the allowed range [0, {MAX_SEED}]")
-    if args.case is not None and not 0 <= args.case < MAX_CASES:
-        raise ValueError(f"--case = {args.case} is outside the allowed range [0, {MAX_CASES - 1}]")
+    if args.composite is not None and not 0 <= args.composite <= MAX_CASES:
+        raise ValueError(
+            f"--composite = {args.composite} is outside the allowed range [0, {MAX_CASES}]"
+        )
+    if args.case is not None and not 0 <= args.case < 2 * MAX_CASES:
+        raise ValueError(
+            f"--case = {args.case} is outside the allowed range [0, {2 * MAX_CASES - 1}] "
+            f"(from {MAX_CASES}: the composite-part cases)"
+        )
     if args.case is not None and args.replay is not None:
         raise ValueError("--case and --replay: give one of them")
     return _levels(args.levels)
@@ -89,9 +104,10 @@ def run(args: argparse.Namespace) -> int:
     from experiments.stress.pool import progress_bar, run_cases
     from experiments.stress.report import summary, table, write_case
 
-    update, close = progress_bar(args.cases)
+    composite = args.cases // 3 if args.composite is None else args.composite
+    update, close = progress_bar(args.cases + composite)
     try:
-        results = run_cases(args.seed, args.cases, levels, args.workers, update)
+        results = run_cases(args.seed, args.cases, levels, args.workers, update, composite)
     finally:
         close()
     data = summary(results, args.seed)

@@ -16,6 +16,21 @@ Levels and scene families are dealt in turn (case ``i`` runs level ``i mod L`` o
   limit; kinematic and geometric: inputs up to 1000 length/s and 100 rad/s), friction 0 to 2,
   restitution 0 to 1, h from 1e-5 to 1e-1 s, 10 to 1000 steps, mass 1e-3 to 1e3 and the moment
   of inertia up to ten times off the part's own.
+
+Composite parts (issue 24) have cases of their own, beside the peg's: case ``COMPOSITE_BASE +
+j`` is composite case ``j`` (:func:`composite_index`), so every peg case keeps its index and
+its draws (case 2606 of seed 0 is the case it always was). Composite case ``j`` is dealt as a
+peg case is, level ``j mod L`` and family ``(j div L) mod F``, and its part's kind
+(:data:`experiments.stress.parts.KINDS`: a scaled cup, a non-convex outline, a plate with
+discs) ``(j div L F) mod 3``, so 81 consecutive composite cases hold every (kind, family,
+level); its part is drawn by :func:`experiments.stress.parts.draw_part` and its family is
+recorded as ``family+kind`` (``chute+cup``). Its placements are the peg's with three changes:
+``flush`` and ``pin`` turn a side of the part's convex hull onto the face (the cup's base,
+walls or rims), ``wedged`` spans the chute at the yaw where the part's width across it
+(its outline projected on the chute's normal) is the chute's (:func:`wedge_angle`; the chute
+between the part's narrowest and widest widths), and a feeder's ``entry`` and the issue's
+drop (a peg's) are not drawn. ``partfeeder stress --cases N`` runs ``--composite M`` of them
+besides the N peg cases (default N / 3, a quarter of the run).
 """
 
 from __future__ import annotations
@@ -27,22 +42,28 @@ import numpy as np
 import shapely
 
 from experiments.stress.case import Case
-from experiments.stress.measures import Solid, union_of
+from experiments.stress.measures import PartShape, Solid, placed_points, union_of
+from experiments.stress.parts import FEEDER_STAND_IN, KINDS, draw_part, read_part
 from experiments.stress.placement import (
     Pose,
     boundary_anchors,
     flush_yaw,
     free_pose,
+    hull_sides,
     in_bounds,
+    side_flush_yaw,
     signed_distance,
     slide_to,
+    span_range,
     touching_pose,
+    wedge_angle,
     wedge_yaw,
 )
 from experiments.stress.scenes import BOUNDS, FREE_FORM, ISSUE_POST, Obstacles, scale_chute
 from feeders.feeder import ORIENTATIONS
 from feeders.halton import halton_designs
 from feeders.part import Peg
+from feeders.part_shape import part_extent
 from feeders.scene import wrap_angle
 from feeders.scene_yaml import SceneError, scene_from_dict
 
@@ -64,6 +85,14 @@ OVERLAP_DEPTH = 0.0095  # deepest start overlap: inside the dynamic level's tole
 # and the scene reader's start check (0.01), with room for its coarser discs
 HALTON_DESIGNS = 128
 _TRIES = 30
+COMPOSITE_BASE = 10_000_000
+"""Case indices from here on are composite-part cases (``partfeeder stress``'s most cases is
+below it): case ``COMPOSITE_BASE + j`` is composite case ``j``."""
+
+
+def composite_index(j: int) -> int:
+    """The case index of composite case ``j``."""
+    return COMPOSITE_BASE + j
 
 
 def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
@@ -127,24 +156,30 @@ def _target(rng: np.random.Generator, placement: str) -> float:
     return 0.0 if rng.uniform() < 0.3 else _log_uniform(rng, 1e-9, 1e-3)
 
 
-def _contact_pose(rng, solid, draw, peg, placement, bounds):
+def _contact_pose(rng, solid, draw, shape: PartShape, placement, bounds):
     """A pose of ``placement`` (near, flush, corner, overlap, pin) and the normal it faces,
     or None after a few failed draws."""
+    peg = isinstance(shape.part, Peg)
+    size = part_extent(shape.part)
+    sides = None if peg else hull_sides(shape.part)
     for _ in range(_TRIES):
         corner = placement == "corner" or (placement == "overlap" and rng.uniform() < 0.5)
         point, normal = _anchor(rng, solid, draw, corner)
         if placement in ("flush", "pin") or (placement == "overlap" and not corner):
-            yaw = flush_yaw(normal, int(rng.integers(4)))
+            if sides is None:
+                yaw = flush_yaw(normal, int(rng.integers(4)))
+            else:
+                yaw = side_flush_yaw(normal, float(sides[int(rng.integers(len(sides)))]))
             if rng.uniform() < 0.3:
                 yaw += _log_uniform(rng, 1e-6, 1e-2) * (1 if rng.uniform() < 0.5 else -1)
         else:
             yaw = float(rng.uniform(-math.pi, math.pi))
-        start = touching_pose(peg, point, normal, yaw)
+        start = touching_pose(shape, point, normal, yaw)
         if placement in ("flush", "pin"):  # the contact anywhere along the side
-            shift = (rng.uniform() - 0.5) * peg.length * np.array([-normal[1], normal[0]])
+            shift = (rng.uniform() - 0.5) * size * np.array([-normal[1], normal[0]])
             start = (start[0] + shift[0], start[1] + shift[1], yaw)
         target = _target(rng, placement)
-        pose = slide_to(solid, peg, start, normal, target)
+        pose = slide_to(solid, shape, start, normal, target)
         if pose is not None and in_bounds(pose, bounds) and not _centre_in(solid, pose):
             return pose, normal
     return None
@@ -168,17 +203,38 @@ def _wedged(rng, draw: Obstacles, width: float, peg: Peg, level: str):
     return pose, np.array([-math.sin(angle), math.cos(angle)])
 
 
-def _velocity(rng, level: str, toward: np.ndarray, peg: Peg, placement: str):
-    """``(state velocity, control, inputs)`` for the level."""
+def _wedged_any(rng, draw: Obstacles, width: float, shape: PartShape, level: str):
+    """A composite part's :func:`_wedged`: turned so that its width across the chute (its
+    outline projected on the chute's normal, :func:`wedge_angle`) is the chute's (plus twice
+    the overlap, for the dynamic level), centred across it; None when no yaw spans it."""
+    assert draw.wedge is not None
+    depth = float(rng.uniform(0.0, OVERLAP_DEPTH)) if level == "dynamic" else 0.0
+    gap = 0.0 if level == "dynamic" else _log_uniform(rng, 1e-9, 1e-4)
+    body_angle = wedge_angle(shape, width + 2.0 * depth - 2.0 * gap)
+    if body_angle is None:
+        return None
+    cx, cy, angle = draw.wedge
+    normal = np.array([-math.sin(angle), math.cos(angle)])
+    yaw = angle + 0.5 * math.pi - body_angle + (math.pi if rng.uniform() < 0.5 else 0.0)
+    along = rng.uniform(-1.0, 1.0)
+    middle = np.array([cx, cy]) + along * np.array([math.cos(angle), math.sin(angle)])
+    across = placed_points(shape.outline, np.array([[0.0, 0.0, yaw]]))[0] @ normal
+    centre = middle - 0.5 * (across.max() + across.min()) * normal
+    return (float(centre[0]), float(centre[1]), float(yaw)), normal
+
+
+def _velocity(rng, level: str, toward: np.ndarray, mass: float, size: float, placement: str):
+    """``(state velocity, control, inputs)`` for the level; ``mass`` and ``size`` (the part's
+    extent) set the wrench's range."""
     if rng.uniform() < 0.6:
         direction = toward
     else:
         angle = rng.uniform(-math.pi, math.pi)
         direction = np.array([math.cos(angle), math.sin(angle)])
-    weight = peg.mass * 9.81
+    weight = mass * 9.81
     still = placement in ("drop", "issue_drop")  # released at rest, no input but gravity
     if level == "dynamic":
-        force, torque = min(1e3, 2.0 * weight), min(1e3, weight * peg.length)
+        force, torque = min(1e3, 2.0 * weight), min(1e3, weight * size)
         inputs = {"max_force": force, "max_torque": torque}
         velocity = [0.0, 0.0, 0.0]
         if not still and rng.uniform() < 0.7:
@@ -200,11 +256,20 @@ def _velocity(rng, level: str, toward: np.ndarray, peg: Peg, placement: str):
 
 
 def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
-    """Case ``index`` of ``seed`` (see the module docstring)."""
+    """Case ``index`` of ``seed`` (see the module docstring): a peg case, or a composite-part
+    case from :data:`COMPOSITE_BASE` on."""
     rng = np.random.default_rng([seed, index])
-    level = levels[index % len(levels)]
-    family = FAMILIES[(index // len(levels)) % len(FAMILIES)]
-    part = _part(rng, family)
+    composite = index >= COMPOSITE_BASE
+    deal = index - COMPOSITE_BASE if composite else index
+    level = levels[deal % len(levels)]
+    family = FAMILIES[(deal // len(levels)) % len(FAMILIES)]
+    kind = KINDS[(deal // (len(levels) * len(FAMILIES))) % len(KINDS)] if composite else "peg"
+    if composite:
+        mass = _log_uniform(rng, 1e-3, 1e3)
+        part: dict[str, Any] = draw_part(rng, kind, family, mass)
+    else:
+        part = _part(rng, family)
+        mass = part["mass"]
     env: dict[str, Any] = {
         "part": part,
         "friction": 0.0 if rng.uniform() < 0.2 else float(rng.uniform(0.0, 2.0)),
@@ -215,30 +280,44 @@ def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
     choices = ["free", "near", "flush", "corner"] + (["overlap"] if level == "dynamic" else [])
     issue_drop = False
     if family == "feeder":
-        doc = _feeder_scene(rng, seed, env)
+        doc = _feeder_scene(rng, seed, {**env, "part": FEEDER_STAND_IN} if composite else env)
         scene = scene_from_dict(doc)
         solid, bounds = Solid.of(scene), scene.bounds
         draw = Obstacles([])
-        choices.append("entry")
+        if composite:
+            doc["part"] = part
+        else:
+            choices.append("entry")
     else:
         draw = FREE_FORM[family](rng)
         bounds = BOUNDS
         special = {"chute": "wedged", "pin": "pin", "post_on_floor": "drop"}.get(family)
         if special:
             choices += [special] * len(choices)  # half of the draws
-        issue_drop = family == "post_on_floor" and draw.polygons[1] == ISSUE_POST
+        issue_drop = not composite and family == "post_on_floor" and draw.polygons[1] == ISSUE_POST
     placement = str(rng.choice(choices))
     if family == "chute":
         if placement != "wedged":
             placement = "wedged" if rng.uniform() < 0.5 else placement
-    peg = _peg(part)
+    shape = PartShape.of(read_part(part) if composite else _peg(part))
+    size = part_extent(shape.part)
     toward = np.array([0.0, -1.0])
     pose = None
     if family == "chute":  # narrower than the part is long: it cannot turn round in it
-        width = peg.width + rng.uniform(0.05, 0.95) * (peg.length - peg.width)
+        if composite:
+            narrow, _, wide, _ = span_range(shape)
+            width = narrow + rng.uniform(0.05, 0.95) * (wide - narrow)
+        else:
+            peg = _peg(part)
+            width = peg.width + rng.uniform(0.05, 0.95) * (peg.length - peg.width)
         draw = scale_chute(draw, width)
         if placement == "wedged":
-            pose, toward = _wedged(rng, draw, width, peg, level)
+            if composite:
+                found = _wedged_any(rng, draw, width, shape, level)
+                if found is not None:
+                    pose, toward = found
+            else:
+                pose, toward = _wedged(rng, draw, width, _peg(part), level)
     if family != "feeder":
         solid = Solid.of_union(union_of(draw.polygons, draw.circles))
     if placement == "entry":
@@ -247,30 +326,30 @@ def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
         if issue_drop and rng.uniform() < 0.5:
             # the issue's drop exactly: it fell through the floor
             part.update(length=1.0, width=0.5, mass=1.0, heavy_fraction=0.5)
-            peg = _peg(part)
+            shape = PartShape.of(_peg(part))
             pose, h, duration = (3.0, 1.0, 0.0), 1e-3, 1.5
             placement = "issue_drop"
         else:
-            pose = free_pose(rng, solid, peg, (-4.5, 4.5, 0.6, 3.5), 0.05)
+            pose = free_pose(rng, solid, shape, (-4.5, 4.5, 0.6, 3.5), 0.05)
             if pose is not None and rng.uniform() < 0.5:
                 pose = (
                     (pose[0], pose[1], 0.0)
-                    if signed_distance(solid, peg, (pose[0], pose[1], 0.0)) > 0.05
+                    if signed_distance(solid, shape, (pose[0], pose[1], 0.0)) > 0.05
                     else pose
                 )
     elif placement in ("near", "flush", "corner", "overlap", "pin"):
-        found = _contact_pose(rng, solid, draw, peg, placement, bounds)
+        found = _contact_pose(rng, solid, draw, shape, placement, bounds)
         if found is not None:
             pose, toward = found
             toward = -toward
     if pose is None:
         placement = "free"
-        pose = free_pose(rng, solid, peg, bounds, 0.05)
+        pose = free_pose(rng, solid, shape, bounds, 0.05)
         if pose is None:
             raise RuntimeError(f"case {index} of seed {seed}: no free pose in {family}")
     # plain floats (YAML-ready), the yaw within the scene reader's range
     pose = (float(pose[0]), float(pose[1]), wrap_angle(float(pose[2])))
-    velocity, control, inputs = _velocity(rng, level, toward, peg, placement)
+    velocity, control, inputs = _velocity(rng, level, toward, shape.part.mass, size, placement)
     env["inputs"] = inputs
     if family == "feeder":
         doc["inputs"] = inputs
@@ -283,7 +362,7 @@ def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
             "goal": _goal_around(pose, bounds),
             **env,
         }
-    inertia = _peg(part).inertia
+    inertia = shape.part.inertia if composite else _peg(part).inertia
     if placement != "issue_drop" and rng.uniform() < 0.5:
         inertia *= _log_uniform(rng, 0.1, 10.0)
     state = tuple(pose) if level == "geometric" else (*pose, *velocity)
@@ -291,14 +370,14 @@ def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
         seed=seed,
         index=index,
         level=level,
-        family=family,
+        family=f"{family}+{kind}" if composite else family,
         placement=placement,
         scene=doc,
         state=tuple(float(v) for v in state),
         control=(float(control[0]), float(control[1]), float(control[2])),
         h=float(h),
         duration=float(duration),
-        mass=float(part["mass"]),
+        mass=float(part["mass"]) if not composite else float(mass),
         inertia=float(inertia),
         friction=float(env["friction"]),
     )

@@ -1,9 +1,11 @@
 """Independent measures of a recorded motion: shapely geometry and closed forms only.
 
 Nothing here calls the code under test (the contact kernels of :mod:`validity`): the solid is
-shapely's union of the scene's obstacles, the part is the rectangle of :class:`feeders.part.Peg`
-placed at each recorded pose, and the energies are the textbook sums. Lengths in the scene's
-units, energies in mass length^2/s^2.
+shapely's union of the scene's obstacles, the part is its shape as shapely sees it
+(:class:`PartShape`: the peg's rectangle, or the union of a composite part's pieces from
+:func:`feeders.part_shape.body_pieces`, convex or not, with its discs) placed at each recorded
+pose, and the energies are the textbook sums. Lengths in the scene's units, energies in mass
+length^2/s^2.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import numpy as np
 import shapely
 
 from feeders.part import Peg
+from feeders.part_shape import Part, body_pieces
 from feeders.scene import Scene
 from feeders.scene_checks import INSCRIBED_TOLERANCE
 
@@ -37,13 +40,87 @@ def union_of(polygons: Sequence[Any], circles: Sequence[Any] | np.ndarray) -> sh
     return solid
 
 
-def part_corners(part: Peg, states: np.ndarray) -> np.ndarray:
-    """The part's corners at every pose ``states[:, :3]`` (x, y, yaw), shape (S, 4, 2)."""
-    body = part.body_vertices()
+def placed_points(points: np.ndarray, states: np.ndarray) -> np.ndarray:
+    """Body-frame ``points (N, 2)`` at every pose ``states[:, :3]`` (x, y, yaw), shape (S, N, 2)."""
     c, s = np.cos(states[:, 2]), np.sin(states[:, 2])
-    x = c[:, None] * body[None, :, 0] - s[:, None] * body[None, :, 1] + states[:, 0:1]
-    y = s[:, None] * body[None, :, 0] + c[:, None] * body[None, :, 1] + states[:, 1:2]
+    x = c[:, None] * points[None, :, 0] - s[:, None] * points[None, :, 1] + states[:, 0:1]
+    y = s[:, None] * points[None, :, 0] + c[:, None] * points[None, :, 1] + states[:, 1:2]
     return np.stack([x, y], axis=-1)
+
+
+@dataclass(frozen=True)
+class PartShape:
+    """The part in its body frame as the measures need it (built once per part).
+
+    ``outline (N, 2)``: points of the part's boundary, every corner of its outline (the peg's
+    four corners; for a composite part the vertices of the union of its pieces, concave corners
+    included, a disc's arc as the vertices of an inscribed ``4 * CIRCLE_SEGMENTS``-gon).
+    ``ring``: the outline as one ring in order when the part is one polygon without holes
+    (None otherwise). ``body``: the union as a shapely geometry, discs inscribed (prepared).
+    ``polygons``, ``discs``: the pieces, for exact gaps. ``rectangle``: the part is the peg's
+    rectangle, whose depths have a closed form."""
+
+    part: Part
+    outline: np.ndarray
+    ring: np.ndarray | None
+    body: shapely.Geometry
+    boundary: shapely.Geometry
+    polygons: tuple[np.ndarray, ...]
+    discs: np.ndarray
+    rectangle: bool
+
+    @classmethod
+    def of(cls, part: Part | PartShape) -> PartShape:
+        """The shape of ``part`` (a shape is its own)."""
+        if isinstance(part, PartShape):
+            return part
+        polygons, discs = body_pieces(part)
+        if len(polygons) == 1 and len(discs) == 0:
+            ring = np.asarray(polygons[0], dtype=float)
+            body = shapely.Polygon(ring)
+        else:
+            body = union_of(polygons, discs)
+            ring = None
+            if body.geom_type == "Polygon" and not body.interiors:
+                ring = np.asarray(body.exterior.coords)[:-1]
+        rings = [ring] if ring is not None else _rings(body)
+        boundary = body.boundary
+        shapely.prepare(body)
+        shapely.prepare(boundary)
+        return cls(
+            part,
+            np.vstack(rings),
+            ring,
+            body,
+            boundary,
+            tuple(np.asarray(v, dtype=float) for v in polygons),
+            np.asarray(discs, dtype=float).reshape(-1, 3),
+            isinstance(part, Peg),
+        )
+
+    def placed(self, states: np.ndarray) -> np.ndarray:
+        """The part at every pose ``states[:, :3]`` as shapely geometries, shape (S,)."""
+        if self.ring is not None:
+            return shapely.polygons(placed_points(self.ring, states))
+        n = len(shapely.get_coordinates(self.body))
+        xy = placed_points(shapely.get_coordinates(self.body), states).reshape(-1, 2)
+        copies = np.array([self.body] * len(states), dtype=object)
+        return shapely.transform(copies, lambda _: xy) if n else copies
+
+
+def _rings(body: shapely.Geometry) -> list[np.ndarray]:
+    """Every ring's vertices (closing point dropped) of a polygon or multipolygon."""
+    rings = []
+    for polygon in getattr(body, "geoms", [body]):
+        for ring in [polygon.exterior, *polygon.interiors]:
+            rings.append(np.asarray(ring.coords)[:-1])
+    return rings
+
+
+def part_corners(part: Part | PartShape, states: np.ndarray) -> np.ndarray:
+    """The part's outline points (:attr:`PartShape.outline`; the peg's four corners) at every
+    pose ``states[:, :3]`` (x, y, yaw), shape (S, N, 2)."""
+    return placed_points(PartShape.of(part).outline, states)
 
 
 @dataclass(frozen=True)
@@ -66,48 +143,68 @@ class Solid:
         return cls(union, boundary, np.unique(vertices, axis=0))
 
 
-def penetration_depths(solid: Solid, part: Peg, states: np.ndarray) -> np.ndarray:
+def penetration_depths(solid: Solid, part: Part | PartShape, states: np.ndarray) -> np.ndarray:
     """How deep the part overlaps the solid at every pose (length, 0 when apart), shape (S,).
 
-    The deepest of (a) the part's corners inside the union, by shapely's distance to the
-    union's boundary, and (b) the union's boundary vertices inside the part, by the distance to
-    the nearest side of the part's rectangle (closed form in the body frame). A square sunk 0.1
-    into a floor reads 0.1. And (c) the radius of the largest disc inside the overlap region
-    (shapely's maximum inscribed circle of part and union): the part cannot leave a disc it
-    holds by a shorter move, so that radius is a lower bound on the depth, and it is what sees
-    a wall through the middle of the part, or a corner just short of the far side of a thin
-    wall, where (a) and (b) read little or nothing.
+    The deepest of (a) the part's outline points (:class:`PartShape`) inside the union, by
+    shapely's distance to the union's boundary, and (b) the union's boundary vertices inside the
+    part, by the distance to the part's boundary (closed form in the body frame for the peg's
+    rectangle; shapely's distance to the boundary of the union of the pieces otherwise, and for
+    a point inside a disc piece at least r - |v - c|, since the disc is inside the part). A
+    square sunk 0.1 into a floor reads 0.1. And (c) the radius of the largest disc inside the
+    overlap region (shapely's maximum inscribed circle of part and union): the part cannot leave
+    a disc it holds by a shorter move, so that radius is a lower bound on the depth, and it is
+    what sees a wall through the middle of the part, or a corner just short of the far side of
+    a thin wall, where (a) and (b) read little or nothing. A non-convex part is measured as it
+    is (no convex hull): an obstacle in the mouth of a cup overlaps nothing.
     """
+    shape = PartShape.of(part)
     states = np.asarray(states, dtype=float).reshape(-1, states.shape[-1])
     depth = np.zeros(len(states))
     if solid.union.is_empty or len(states) == 0:
         return depth
-    placed = part_corners(part, states)
+    placed = placed_points(shape.outline, states)
     corners = placed.reshape(-1, 2)
     inside = shapely.contains_xy(solid.union, corners[:, 0], corners[:, 1])
     if inside.any():
         d = np.zeros(len(corners))
         d[inside] = shapely.distance(solid.boundary, shapely.points(corners[inside]))
         depth = np.maximum(depth, d.reshape(len(states), -1).max(axis=1))
-    body = part.body_vertices()
-    x0, y0 = body[:, 0].min(), body[:, 1].min()
-    x1, y1 = body[:, 0].max(), body[:, 1].max()
     c, s = np.cos(states[:, 2])[:, None], np.sin(states[:, 2])[:, None]
     for lo in range(0, len(solid.vertices), 256):  # bounded memory: S x 256 at a time
         v = solid.vertices[lo : lo + 256]
         dx = v[None, :, 0] - states[:, 0:1]
         dy = v[None, :, 1] - states[:, 1:2]
         bx, by = c * dx + s * dy, -s * dx + c * dy  # body frame
+        depth = np.maximum(depth, _depth_in_part(shape, bx, by))
+    return np.maximum(depth, _held_disc(solid, shape, states))
+
+
+def _depth_in_part(shape: PartShape, bx: np.ndarray, by: np.ndarray) -> np.ndarray:
+    """Per row, the deepest of the body-frame points ``(bx, by)`` (rows: poses) inside the
+    part, by their distance to its boundary (0 outside), shape (S,)."""
+    if shape.rectangle:
+        body = shape.outline
+        x0, y0 = body[:, 0].min(), body[:, 1].min()
+        x1, y1 = body[:, 0].max(), body[:, 1].max()
         inner = np.minimum(np.minimum(bx - x0, x1 - bx), np.minimum(by - y0, y1 - by))
-        depth = np.maximum(depth, np.maximum(inner, 0.0).max(axis=1))
-    return np.maximum(depth, _held_disc(solid, placed))
+        return np.maximum(inner, 0.0).max(axis=1)
+    inner = np.zeros(bx.shape)
+    x, y = bx.ravel(), by.ravel()
+    inside = shapely.contains_xy(shape.body, x, y)
+    if inside.any():
+        flat = inner.reshape(-1)
+        flat[inside] = shapely.distance(shape.boundary, shapely.points(x[inside], y[inside]))
+    for cx, cy, r in shape.discs:
+        inner = np.maximum(inner, r - np.hypot(bx - cx, by - cy))
+    return np.maximum(inner, 0.0).max(axis=1)
 
 
-def _held_disc(solid: Solid, corners: np.ndarray) -> np.ndarray:
-    """Radius of the largest disc inside the overlap of the part (corners (S, 4, 2)) and the
-    solid at every pose (0 where they do not overlap with area)."""
-    radius = np.zeros(len(corners))
-    parts = shapely.polygons(corners)
+def _held_disc(solid: Solid, shape: PartShape, states: np.ndarray) -> np.ndarray:
+    """Radius of the largest disc inside the overlap of the part and the solid at every pose
+    (0 where they do not overlap with area)."""
+    radius = np.zeros(len(states))
+    parts = shape.placed(states)
     touching = np.nonzero(shapely.intersects(solid.union, parts))[0]
     if len(touching) == 0:
         return radius

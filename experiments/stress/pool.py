@@ -13,7 +13,7 @@ from typing import Any
 
 from experiments.executors.local import map_jobs
 from experiments.stress.case import LEVEL_NAMES
-from experiments.stress.generate import generate_case
+from experiments.stress.generate import composite_index, generate_case
 from experiments.stress.runner import record_of
 
 Result = tuple[dict[str, Any], float]
@@ -65,10 +65,13 @@ def run_cases(
     levels: tuple[str, ...],
     workers: int,
     progress: Callable[[int], None] | None = None,
+    n_composite: int = 0,
 ) -> list[Result]:
-    """``(record, seconds)`` of cases 0 .. n_cases - 1 of ``seed``, in index order;
-    ``progress(k)`` is called as each batch of k cases finishes."""
-    chunks = [list(range(i, min(i + CHUNK, n_cases))) for i in range(0, n_cases, CHUNK)]
+    """``(record, seconds)`` of cases 0 .. n_cases - 1 of ``seed`` and of its composite-part
+    cases 0 .. n_composite - 1 (:func:`experiments.stress.generate.composite_index`), in index
+    order; ``progress(k)`` is called as each batch of k cases finishes."""
+    indices = list(range(n_cases)) + [composite_index(j) for j in range(n_composite)]
+    chunks = [indices[i : i + CHUNK] for i in range(0, len(indices), CHUNK)]
     results = map_jobs(
         functools.partial(run_chunk, seed, levels),
         chunks,

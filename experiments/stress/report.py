@@ -43,7 +43,7 @@ def summary(results: list[tuple[dict[str, Any], float]], seed: int) -> dict[str,
             :WORST
         ],
     }
-    return {
+    data = {
         "seed": seed,
         "cases": len(records),
         "hard_failures": sum(1 for r in records if r["hard"]),
@@ -55,6 +55,22 @@ def summary(results: list[tuple[dict[str, Any], float]], seed: int) -> dict[str,
         "worst": {k: [_brief(r) for r in v] for k, v in worst.items()},
         "failing": [_brief(r) for r in records if r["hard"]],
     }
+    if any("+" in r["family"] for r in records):
+        data["parts"] = _by_part(records)
+    return data
+
+
+def _by_part(records: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    """Per kind of part (``peg``, or the composite kind after the ``+`` of a family), per
+    level: cases, hard failures and the deepest penetration (length)."""
+    parts: dict[str, dict[str, Any]] = defaultdict(dict)
+    for r in records:
+        kind = r["family"].split("+")[1] if "+" in r["family"] else "peg"
+        row = parts[kind].setdefault(r["level"], {"cases": 0, "hard": 0, "max_depth": 0.0})
+        row["cases"] += 1
+        row["hard"] += bool(r["hard"])
+        row["max_depth"] = max(row["max_depth"], float(r["max_depth"]))
+    return {kind: parts[kind] for kind in sorted(parts)}
 
 
 def _brief(record: dict) -> dict[str, Any]:
@@ -92,6 +108,14 @@ def table(data: dict[str, Any]) -> str:
     rates = data["cases_per_second"]
     lines.append("cases/s".ljust(width) + "".join(f"{rates.get(lv, 0):>11.1f}" for lv in levels))
     lines.append("(* hard bound; cases/s on one core)")
+    for kind, rows in data.get("parts", {}).items():
+        lines.append(
+            f"part {kind}: "
+            + "; ".join(
+                f"{level} {row['cases']} cases, {row['hard']} hard, deepest {row['max_depth']:.3g}"
+                for level, row in rows.items()
+            )
+        )
     for level, decades in data["hard_by_h"].items():
         lines.append(
             f"hard failures of {level} by h: "

@@ -33,15 +33,37 @@ from experiments.stress.measures import (
     pose_corrections,
     wrench_work,
 )
+from experiments.stress.parts import (
+    FEEDER_STAND_IN,
+    FREE_FORM_STAND_IN,
+    is_composite,
+    read_part,
+    with_mass,
+)
+from feeders.part_shape import part_extent
 from feeders.scene import Scene
-from feeders.scene_yaml import scene_from_dict
+from feeders.scene_yaml import checked_scene, scene_from_dict
 
 
 def scene_of(case: Case) -> Scene:
-    """The case's scene with its mass, moment of inertia and friction."""
-    scene = scene_from_dict(case.scene, name="stress")
-    part = dataclasses.replace(scene.part, mass=case.mass, inertia=case.inertia)
-    return dataclasses.replace(scene, part=part, friction=case.friction)
+    """The case's scene with its mass, moment of inertia and friction. A composite part
+    (:mod:`experiments.stress.parts`) replaces a stand-in peg the scene is read with: a feeder
+    is built around the peg cases' part (its chutes are made for it; its entries are not the
+    composite part's and are not checked), a free-form scene's start is checked with the
+    composite part itself."""
+    spec = case.scene.get("part")
+    if not is_composite(spec):
+        scene = scene_from_dict(case.scene, name="stress")
+        part = dataclasses.replace(scene.part, mass=case.mass, inertia=case.inertia)
+        return dataclasses.replace(scene, part=part, friction=case.friction)
+    composite = read_part(spec)
+    feeder = "feeder" in case.scene
+    stand_in = FEEDER_STAND_IN if feeder else FREE_FORM_STAND_IN
+    scene = scene_from_dict({**case.scene, "part": stand_in}, name="stress")
+    composite = with_mass(composite, case.mass, case.inertia)  # type: ignore[arg-type]
+    # Scene.part is typed Peg; the levels take any part (feeders.part_shape.Part)
+    scene = dataclasses.replace(scene, part=composite, friction=case.friction)  # type: ignore[arg-type]
+    return scene if feeder else checked_scene(scene)
 
 
 def _simulate(case: Case, scene: Scene) -> tuple[np.ndarray, dict[str, Any]]:
@@ -83,7 +105,7 @@ def _energy(case: Case, scene: Scene, states: np.ndarray, h: float) -> tuple[flo
     energy = mechanical_energy(states, mass, inertia, scene.gravity)
     gain = float(np.max(energy - energy[0] - work - lift, initial=0.0))
     start_kinetic = float(kinetic_energy(states[0, 3:6], mass, inertia)[0])
-    scale = mass * g * scene.part.length + start_kinetic + float(np.max(np.abs(work)))
+    scale = mass * g * part_extent(scene.part) + start_kinetic + float(np.max(np.abs(work)))
     return gain, dynamic_energy_allowance(scale)
 
 
