@@ -59,7 +59,8 @@ class OptimizeProgress:
     (:func:`experiments.optimize.run.evaluations_total`: starts, every run's budget, the
     baseline's; a run that converges early jumps to its budget), with the best value and
     P(both) so far, then the verdicts on fresh draws (the candidates', the optimum's and the
-    baseline's), then the optimum's margins (16 axes; its verdict at nominal comes first).
+    baseline's), then the optimum's margins (16 axes, a family's its parameters and mu; its
+    verdict at nominal comes first).
     ``stream`` None draws on stderr when it is a terminal (tests give a ``StringIO``)."""
 
     def __init__(self, quiet: bool, stream: TextIO | None = None):
