@@ -143,9 +143,11 @@ def _anchor(rng: np.random.Generator, solid: Solid, draw: Obstacles, corner: boo
     return a + rng.uniform() * (b - a), normal
 
 
-def _centre_in(solid: Solid, pose: Pose) -> bool:
-    """The centre of mass inside the solid: a slide that ended through a wall, not at it."""
-    return bool(shapely.contains_xy(solid.union, pose[0], pose[1]))
+def _centre_in(solid: Solid, shape: PartShape, pose: Pose) -> bool:
+    """The part's anchor (:attr:`PartShape.anchor`: the centre of mass, unless that is outside
+    the part) inside the solid: a slide that ended through a wall, not at it."""
+    x, y = placed_points(shape.anchor[None, :], np.array([pose], dtype=float))[0, 0]
+    return bool(shapely.contains_xy(solid.union, x, y))
 
 
 def _target(rng: np.random.Generator, placement: str) -> float:
@@ -180,7 +182,7 @@ def _contact_pose(rng, solid, draw, shape: PartShape, placement, bounds):
             start = (start[0] + shift[0], start[1] + shift[1], yaw)
         target = _target(rng, placement)
         pose = slide_to(solid, shape, start, normal, target)
-        if pose is not None and in_bounds(pose, bounds) and not _centre_in(solid, pose):
+        if pose is not None and in_bounds(pose, bounds) and not _centre_in(solid, shape, pose):
             return pose, normal
     return None
 

@@ -58,7 +58,10 @@ class PartShape:
     ``ring``: the outline as one ring in order when the part is one polygon without holes
     (None otherwise). ``body``: the union as a shapely geometry, discs inscribed (prepared).
     ``polygons``, ``discs``: the pieces, for exact gaps. ``rectangle``: the part is the peg's
-    rectangle, whose depths have a closed form."""
+    rectangle, whose depths have a closed form. ``anchor (2,)``: a point of the part's
+    material, followed by the wall-crossing measure: the centre of mass (the origin) when it
+    lies inside the part, else the centre of the largest disc inside the part (a cup's centre
+    of mass is in its mouth, where an obstacle may be without touching it)."""
 
     part: Part
     outline: np.ndarray
@@ -68,6 +71,7 @@ class PartShape:
     polygons: tuple[np.ndarray, ...]
     discs: np.ndarray
     rectangle: bool
+    anchor: np.ndarray
 
     @classmethod
     def of(cls, part: Part | PartShape) -> PartShape:
@@ -84,6 +88,11 @@ class PartShape:
             if body.geom_type == "Polygon" and not body.interiors:
                 ring = np.asarray(body.exterior.coords)[:-1]
         rings = [ring] if ring is not None else _rings(body)
+        anchor = np.zeros(2)
+        if not shapely.contains_xy(body, 0.0, 0.0):
+            largest = max(getattr(body, "geoms", [body]), key=lambda g: g.area)
+            centre = shapely.maximum_inscribed_circle(largest, INSCRIBED_TOLERANCE)
+            anchor = np.asarray(centre.coords[0], dtype=float)
         boundary = body.boundary
         shapely.prepare(body)
         shapely.prepare(boundary)
@@ -96,6 +105,7 @@ class PartShape:
             tuple(np.asarray(v, dtype=float) for v in polygons),
             np.asarray(discs, dtype=float).reshape(-1, 3),
             isinstance(part, Peg),
+            anchor,
         )
 
     def placed(self, states: np.ndarray) -> np.ndarray:

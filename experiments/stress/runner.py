@@ -22,6 +22,7 @@ from experiments.stress.bounds import (
 )
 from experiments.stress.case import Case
 from experiments.stress.measures import (
+    PartShape,
     Solid,
     component_of,
     correction_work,
@@ -30,6 +31,7 @@ from experiments.stress.measures import (
     linearisation_errors,
     mechanical_energy,
     penetration_depths,
+    placed_points,
     pose_corrections,
     wrench_work,
 )
@@ -120,6 +122,31 @@ def _push_out(case: Case, scene: Scene, states: np.ndarray, h: float) -> float:
     return float(np.max(move, initial=0.0) / h)
 
 
+def _crossed_step(solid: Solid, shape: PartShape, scene: Scene, states: np.ndarray) -> int | None:
+    """The first step at which the part's :attr:`PartShape.anchor` (a point of its material:
+    the centre of mass unless that lies outside the part, as in a cup's mouth) is in another
+    piece of free space than at the start, or inside the solid (0 if it starts there); None
+    when it never is. An anchor off the centre of mass may leave the bounds box, where no piece
+    is known: those states are skipped."""
+    components = free_components(solid, scene.bounds)
+    if not shape.anchor.any():
+        label = component_of(components, states)
+        steps = np.arange(len(states))
+    else:
+        points = placed_points(shape.anchor[None, :], states)[:, 0, :]
+        x0, x1, y0, y1 = scene.bounds
+        known = (x0 <= points[:, 0]) & (points[:, 0] <= x1)
+        known &= (y0 <= points[:, 1]) & (points[:, 1] <= y1)
+        steps = np.nonzero(known)[0]
+        if len(steps) == 0:
+            return None
+        label = component_of(components, points[steps])
+    moved = np.nonzero(label != label[0])[0]
+    if label[0] < 0 or len(moved):
+        return int(steps[moved[0]]) if len(moved) else int(steps[0])
+    return None
+
+
 def record_of(case: Case) -> dict[str, Any]:
     """Run the case and measure it (see :mod:`experiments.stress.bounds` for the bounds)."""
     record: dict[str, Any] = {
@@ -172,7 +199,8 @@ def _measure(
         if len(states) == 0:
             return
     solid = Solid.of(scene)
-    depths = penetration_depths(solid, scene.part, states)
+    shape = PartShape.of(scene.part)
+    depths = penetration_depths(solid, shape, states)
     record["start_depth"] = float(depths[0])
     record["max_depth"] = float(depths.max())
     step_error = 0.0
@@ -184,11 +212,7 @@ def _measure(
     if case.level != "geometric":
         gain, allowed = _energy(case, scene, states, float(telemetry.get("h", case.h)))
         record["energy_gain"], record["energy_allowed"] = gain, allowed
-        components = free_components(solid, scene.bounds)
-        label = component_of(components, states)
-        moved = np.nonzero(label != label[0])[0]
-        if label[0] < 0 or len(moved):
-            record["crossed_step"] = int(moved[0]) if len(moved) else 0
+        record["crossed_step"] = _crossed_step(solid, shape, scene, states)
     if case.level == "dynamic":
         record["push_out"] = _push_out(case, scene, states, float(telemetry["h"]))
         record["push_out_allowed"] = float(telemetry["push_cap"]) + PUSH_OUT_SLACK
