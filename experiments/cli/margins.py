@@ -109,11 +109,12 @@ def _subject(args: argparse.Namespace) -> Any:
     """The design ``--design`` or ``--family`` with ``--values`` names, checked (a family's
     design must build): UsageError naming the option."""
     if args.family is None:
-        from experiments.margins.measure import Subject
-
         if args.values is not None:
             raise UsageError("--values needs --family (a design's values are --design's)")
-        return Subject.of_scene(load_scene(args.design, None))
+        scene = load_scene(args.design, None)  # checked before the margins' heavy imports
+        from experiments.margins.measure import Subject
+
+        return Subject.of_scene(scene)
     from experiments.cli.scenes import family_path
     from experiments.margins.measure import FamilySubject
     from feeders.feeder import DegenerateDesign
