@@ -50,11 +50,12 @@ def test_issue_post_drop_stays_above_the_floor(level):
 @pytest.mark.parametrize("seed", [0, 7, 11])
 def test_ci_sized_run_keeps_every_hard_bound(seed: int):
     """300 cases of each of three seeds over every level and family (one seed alone hid the
-    apex and straddle faults seed 7 showed): no NaN, exception, wall crossing, penetration or
-    energy gain beyond the bounds of experiments.stress.bounds."""
-    results = run_cases(seed, CI_CASES, LEVEL_NAMES, workers=1)
+    apex and straddle faults seed 7 showed), and 100 with a composite part (issue 24: a cup,
+    a non-convex outline, a plate with discs): no NaN, exception, wall crossing, penetration
+    or energy gain beyond the bounds of experiments.stress.bounds."""
+    results = run_cases(seed, CI_CASES, LEVEL_NAMES, workers=1, n_composite=100)
     data = summary(results, seed)
-    assert data["cases"] == CI_CASES
+    assert data["cases"] == CI_CASES + 100
     assert data["hard_failures"] == 0, table(data)
 
 
