@@ -22,7 +22,12 @@ import numpy as np
 from numba import njit
 
 from feeders.scene import Scene
-from validity.geometry_kernel import part_penetrates_deeper_than, place_part
+from validity.geometry_kernel import (
+    part_penetrates_deeper_than,
+    penetrates_deeper_than,
+    place_part,
+    pose_vertices,
+)
 from validity.scene_arrays import SceneArrays
 
 DEFAULT_STEP = 0.01  # h (s): with |u| <= 1 a step moves a corner by < 0.03, far below a wall
@@ -35,13 +40,44 @@ def _in_bounds(x: float, y: float, bounds: np.ndarray) -> bool:
 
 
 @njit(cache=True)
+def _buffers(body, bdiscs):
+    """``(single, polygon, placed, world, wdiscs)``: whether the part is one convex polygon
+    and no disc (the peg: its polygon ``polygon`` is placed into ``placed`` and checked as it
+    is, with no view of a piece per check), and the buffers of a part of several pieces."""
+    single = body.shape[0] == 1 and bdiscs.shape[0] == 0
+    polygon = np.ascontiguousarray(body[0])
+    return single, polygon, np.empty_like(polygon), np.empty_like(body), np.empty_like(bdiscs)
+
+
+@njit(cache=True)
 def _valid_into(
-    world, wdiscs, x, y, yaw, body, bcounts, bdiscs, verts, counts, aabbs, circles, bounds, ps, ds
+    single,
+    polygon,
+    placed,
+    world,
+    wdiscs,
+    x,
+    y,
+    yaw,
+    body,
+    bcounts,
+    bdiscs,
+    verts,
+    counts,
+    aabbs,
+    circles,
+    bounds,
+    ps,
+    ds,
 ):
-    """:func:`pose_is_valid` writing the placed part into the caller's buffers ``world`` and
-    ``wdiscs``; ``ps (P,)``, ``ds (C,)``: the polygons' and discs' slacks."""
+    """:func:`pose_is_valid` writing the placed part into the caller's buffers (``single``
+    to ``wdiscs``: :func:`_buffers`); ``ps (P,)``, ``ds (C,)``: the polygons' and discs'
+    slacks."""
     if not _in_bounds(x, y, bounds):
         return False
+    if single and bcounts[0] == body.shape[1]:
+        pose_vertices(polygon, x, y, yaw, placed)
+        return not penetrates_deeper_than(placed, verts, counts, aabbs, circles, ps, ds)
     place_part(body, bcounts, bdiscs, x, y, yaw, world, wdiscs)
     return not part_penetrates_deeper_than(
         world, bcounts, wdiscs, verts, counts, aabbs, circles, ps, ds
@@ -77,9 +113,11 @@ def pose_is_valid(
     convex pieces ``body (Q, K, 2)`` with ``bcounts (Q,)`` vertices and discs ``bdiscs (D, 3)``,
     body frame (:class:`validity.scene_arrays.PartArrays`)."""
     ps, ds = _slacks(verts, circles, polygon_slack, disc_slack)
-    world = np.empty_like(body)
-    wdiscs = np.empty_like(bdiscs)
+    single, polygon, placed, world, wdiscs = _buffers(body, bdiscs)
     return _valid_into(
+        single,
+        polygon,
+        placed,
         world,
         wdiscs,
         x,
@@ -126,13 +164,15 @@ def propagate_increments(
     n = max(1, math.ceil(duration / h - 1e-9))
     dt = duration / n
     yaw = (yaw + math.pi) % (2.0 * math.pi) - math.pi
-    world = np.empty_like(body)  # one buffer for every step of this propagation
-    wdiscs = np.empty_like(bdiscs)
+    single, polygon, placed, world, wdiscs = _buffers(body, bdiscs)  # for every step
     for k in range(n):
         nx, ny = x + dt * vx, y + dt * vy
         nyaw = yaw + dt * omega
         nyaw = (nyaw + math.pi) % (2.0 * math.pi) - math.pi
         if not _valid_into(
+            single,
+            polygon,
+            placed,
             world,
             wdiscs,
             nx,

@@ -348,6 +348,8 @@ def part_clearance(
     """:func:`clearance_at` of a placed part of convex pieces ``world (Q, K, 2)`` (``wcounts``
     vertices each) and discs ``wdiscs (D, 3)``: the smallest over its pieces (a piece's
     penetration depth is its own, as an obstacle piece's is)."""
+    if world.shape[0] == 1 and wdiscs.shape[0] == 0 and wcounts[0] == world.shape[1]:
+        return clearance_at(world[0], verts, counts, aabbs, circles, stop_below)
     best = np.inf
     for q in range(world.shape[0]):
         best = min(
@@ -397,6 +399,10 @@ def part_penetrates_deeper_than(
 ) -> bool:
     """:func:`penetrates_deeper_than` for a placed part of convex pieces and discs: some
     piece overlaps some obstacle by more than that obstacle's slack."""
+    if world.shape[0] == 1 and wdiscs.shape[0] == 0 and wcounts[0] == world.shape[1]:
+        return penetrates_deeper_than(
+            world[0], verts, counts, aabbs, circles, polygon_slack, disc_slack
+        )
     for q in range(world.shape[0]):
         if penetrates_deeper_than(
             world[q, : wcounts[q]], verts, counts, aabbs, circles, polygon_slack, disc_slack
@@ -420,6 +426,8 @@ def part_penetrates_deeper_than(
 @njit(cache=True)
 def part_penetrates(world, wcounts, wdiscs, verts, counts, aabbs, circles) -> bool:
     """:func:`penetrates` for a placed part of convex pieces and discs (psi_n < 0 anywhere)."""
+    if world.shape[0] == 1 and wdiscs.shape[0] == 0 and wcounts[0] == world.shape[1]:
+        return penetrates(world[0], verts, counts, aabbs, circles)
     for q in range(world.shape[0]):
         if penetrates(world[q, : wcounts[q]], verts, counts, aabbs, circles):
             return True

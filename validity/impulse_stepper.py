@@ -26,8 +26,19 @@ import math
 import numpy as np
 from numba import njit
 
-from validity.contact_kernel import MAX_CONTACTS, find_part_contacts
-from validity.geometry_kernel import part_penetrates, part_radius, place_part
+from validity.contact_kernel import (
+    MAX_CONTACTS,
+    find_contacts,
+    find_part_contacts,
+    plain_part,
+)
+from validity.geometry_kernel import (
+    part_penetrates,
+    part_radius,
+    penetrates,
+    place_part,
+    pose_vertices,
+)
 from validity.impact import STATS_FIELDS, impact_workspace, resolve_impacts
 
 TELEMETRY_COLUMNS = ("impacts", "sub_steps", "jammed", "stalled", "halvings")
@@ -122,6 +133,9 @@ def kinematic_kernel(
     record = traj.shape[0] > 0
     x, y, yaw = state0[0], state0[1], state0[2]
     vel_out = state0[3:6].copy()
+    plain = plain_part(body_counts, body_surface, body_corners, body_discs)
+    polygon = np.ascontiguousarray(body[0, : body_counts[0]])  # a plain part's only piece
+    placed = np.empty_like(polygon)
     world = np.empty_like(body)
     probe = np.empty_like(body)
     wdiscs = np.empty_like(body_discs)
@@ -147,23 +161,29 @@ def kinematic_kernel(
             speed = math.hypot(vel[0], vel[1]) + abs(vel[2]) * radius
             if speed == 0.0:
                 break
-            place_part(body, body_counts, body_discs, x, y, yaw, world, wdiscs)
             margin = max(_MIN_MARGIN, speed * t_left + band)
-            nc, _ = find_part_contacts(
-                world,
-                body_counts,
-                body_surface,
-                body_corners,
-                wdiscs,
-                verts,
-                counts,
-                aabbs,
-                circles,
-                surface,
-                corners,
-                margin,
-                contacts,
-            )
+            if plain:
+                pose_vertices(polygon, x, y, yaw, placed)
+                nc, _ = find_contacts(
+                    placed, verts, counts, aabbs, circles, surface, corners, margin, contacts
+                )
+            else:
+                place_part(body, body_counts, body_discs, x, y, yaw, world, wdiscs)
+                nc, _ = find_part_contacts(
+                    world,
+                    body_counts,
+                    body_surface,
+                    body_corners,
+                    wdiscs,
+                    verts,
+                    counts,
+                    aabbs,
+                    circles,
+                    surface,
+                    corners,
+                    margin,
+                    contacts,
+                )
             for i in range(nc):
                 if contacts[i, 0] <= band:
                     touched = 1
@@ -180,10 +200,15 @@ def kinematic_kernel(
                 continue
             for _ in range(_MAX_HALVINGS + 1):
                 nx, ny, nyaw = x + t * vel[0], y + t * vel[1], yaw + t * vel[2]
-                place_part(body, body_counts, body_discs, nx, ny, nyaw, probe, probe_discs)
-                if not part_penetrates(
-                    probe, body_counts, probe_discs, verts, counts, aabbs, circles
-                ):
+                if plain:
+                    pose_vertices(polygon, nx, ny, nyaw, placed)
+                    inside = penetrates(placed, verts, counts, aabbs, circles)
+                else:
+                    place_part(body, body_counts, body_discs, nx, ny, nyaw, probe, probe_discs)
+                    inside = part_penetrates(
+                        probe, body_counts, probe_discs, verts, counts, aabbs, circles
+                    )
+                if not inside:
                     break
                 t *= 0.5
                 halvings += 1

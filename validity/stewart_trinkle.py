@@ -43,7 +43,12 @@ import math
 import numpy as np
 from numba import njit
 
-from validity.contact_kernel import MAX_CONTACTS, find_part_contacts
+from validity.contact_kernel import (
+    MAX_CONTACTS,
+    find_contacts,
+    find_part_contacts,
+    plain_part,
+)
 from validity.contact_lcp import (
     FAILED,
     FALLBACK_FRICTIONLESS,
@@ -53,7 +58,7 @@ from validity.contact_lcp import (
     lcp_columns,
     solve_with_fallback,
 )
-from validity.geometry_kernel import part_radius, place_part
+from validity.geometry_kernel import part_radius, place_part, pose_vertices
 from validity.lcp import LCP_REGULARISED, LCP_SOLVED, guess_basis, solve_from_basis, solve_lcp
 
 # Per-step telemetry columns.
@@ -225,6 +230,9 @@ def simulate_kernel(
     radius = part_radius(body, body_counts, body_discs)
     accel = math.hypot(ax, ay) + radius * abs(alpha)
 
+    plain = plain_part(body_counts, body_surface, body_corners, body_discs)
+    polygon = np.ascontiguousarray(body[0, : body_counts[0]])  # a plain part's only piece
+    placed = np.empty_like(polygon)
     world = np.empty_like(body)
     wdiscs = np.empty_like(body_discs)
     contacts = np.empty((MAX_CONTACTS, 5))
@@ -260,22 +268,28 @@ def simulate_kernel(
         else:
             speed = math.hypot(vx, vy) + radius * abs(om)
             margin = margin0 + 2.0 * h * (speed + h * accel)
-            place_part(body, body_counts, body_discs, x, y, th, world, wdiscs)
-            nc, clear = find_part_contacts(
-                world,
-                body_counts,
-                body_surface,
-                body_corners,
-                wdiscs,
-                verts,
-                counts,
-                aabbs,
-                circles,
-                surface,
-                corners,
-                margin,
-                contacts,
-            )
+            if plain:
+                pose_vertices(polygon, x, y, th, placed)
+                nc, clear = find_contacts(
+                    placed, verts, counts, aabbs, circles, surface, corners, margin, contacts
+                )
+            else:
+                place_part(body, body_counts, body_discs, x, y, th, world, wdiscs)
+                nc, clear = find_part_contacts(
+                    world,
+                    body_counts,
+                    body_surface,
+                    body_corners,
+                    wdiscs,
+                    verts,
+                    counts,
+                    aabbs,
+                    circles,
+                    surface,
+                    corners,
+                    margin,
+                    contacts,
+                )
             summary[S_SEARCHES] += 1
             if nc == 0:
                 vx, vy, om = vstar[0], vstar[1], vstar[2]
