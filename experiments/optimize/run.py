@@ -18,7 +18,7 @@
    differences over Table 2's box, the feeders drawn over each other) is the 12-parameter
    feeder's, so a family's results have the two verdicts without it.
 5. When the optimum works on those draws, its tolerance margins
-   (:mod:`experiments.optimize.tolerance`; a device family's, :func:`family_margins`): the
+   (:mod:`experiments.optimize.tolerance`; a device family's too): the
    feeder's axes are its 12 parameters, friction and the peg's dimensions, a family's its
    parameters over its box and friction (:mod:`experiments.margins.axes`).
 
@@ -48,7 +48,12 @@ from experiments.optimize.config import FAMILY_DEFAULT, OptimizeConfig
 from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
 from experiments.optimize.methods import METHODS, POPULATION_METHODS
 from experiments.optimize.objective import eq10_terms
-from experiments.optimize.tolerance import AxisCallback, optimum_margins, settings_key
+from experiments.optimize.tolerance import (
+    AxisCallback,
+    family_margins,
+    optimum_margins,
+    settings_key,
+)
 from experiments.proportions import wilson_interval
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignParameters, preset
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
@@ -244,37 +249,6 @@ def _axis_progress(progress: Progress | None, axes: int | None = None) -> AxisCa
         progress("axis", {"axis": margin.axis.name})
 
     return on_axis
-
-
-def family_margins(
-    db,
-    config: OptimizeConfig,
-    family: DeviceFamily,
-    key: str,
-    label: str = OPTIMUM,
-    workers: int = 1,
-    on_axis: AxisCallback | None = None,
-    measure: Any = None,
-) -> dict[str, Any]:
-    """The margins of the device family's design ``key``, named ``label``, as
-    :func:`experiments.optimize.tolerance.optimum_margins` gives the feeder's: the same
-    settings and store, the axes the family's parameters over its box and friction
-    (:class:`experiments.margins.measure.FamilySubject`, the family's text from the config).
-    ``measure`` replaces :func:`experiments.margins.run.margins_of` (tests count calls)."""
-    digest = settings_key(config)
-    stored = store.stored_margins(db, key, digest)
-    if stored is not None:
-        return stored
-    from experiments.margins.measure import FamilySubject
-    from experiments.margins.run import margins_of
-    from experiments.optimize.tolerance import margin_settings
-
-    run = measure or margins_of
-    vector = store.design_of_key(key)
-    subject = FamilySubject.of_family(family, config.family_yaml, vector, name=label)
-    data = run(subject, margin_settings(config), workers, on_axis=on_axis).to_dict()
-    store.record_margins(db, key, digest, data)
-    return data
 
 
 def evaluations_total(config: OptimizeConfig, starts: int) -> int:

@@ -17,10 +17,13 @@ import hashlib
 import json
 import sqlite3
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from experiments.optimize import store
 from experiments.optimize.config import OptimizeConfig
+
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
 
 MARGIN_DROPS = 20  # trials per value tried (the margins command's default)
 MARGIN_SEED_OFFSET = 2  # the margins' draws: seed final.seed + 2
@@ -51,6 +54,31 @@ def settings_key(config: OptimizeConfig) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
+def _stored_or_measured(
+    db: sqlite3.Connection,
+    config: OptimizeConfig,
+    key: str,
+    subject: Callable[[], Any],
+    workers: int,
+    on_axis: AxisCallback | None,
+    measure: Callable[..., Any] | None,
+) -> dict[str, Any]:
+    """The margins of design ``key``: stored ones when measured before with the same
+    settings, else those of ``subject()`` (made only then) measured on ``workers`` processes
+    (``on_axis`` called as each axis finishes) and stored. ``measure`` replaces
+    :func:`experiments.margins.run.margins_of` (tests count calls)."""
+    digest = settings_key(config)
+    stored = store.stored_margins(db, key, digest)
+    if stored is not None:
+        return stored
+    from experiments.margins.run import margins_of
+
+    run = measure or margins_of
+    data = run(subject(), margin_settings(config), workers, on_axis=on_axis).to_dict()
+    store.record_margins(db, key, digest, data)
+    return data
+
+
 def optimum_margins(
     db: sqlite3.Connection,
     config: OptimizeConfig,
@@ -60,31 +88,49 @@ def optimum_margins(
     on_axis: AxisCallback | None = None,
     measure: Callable[..., Any] | None = None,
 ) -> dict[str, Any]:
-    """The margins of design ``key`` (:meth:`experiments.margins.run.MarginsReport.to_dict`,
-    named ``label``): stored ones when measured before with the same settings, else measured
-    on ``workers`` processes (``on_axis`` called as each axis finishes) and stored.
-    ``measure`` replaces :func:`experiments.margins.run.margins_of` (tests count calls)."""
-    digest = settings_key(config)
-    stored = store.stored_margins(db, key, digest)
-    if stored is not None:
-        return stored
-    from experiments.margins.measure import Subject
-    from experiments.margins.run import margins_of
-    from feeders.design import DesignParameters
-    from feeders.feeder import build_feeder
-    from feeders.scene_yaml import environment_from_dict
+    """The margins of the feeder's design ``key`` (:meth:`experiments.margins.run.
+    MarginsReport.to_dict`, named ``label``), stored or measured (:func:`_stored_or_measured`)
+    on the config's feeder: its 16 axes."""
 
-    run = measure or margins_of
-    environment = environment_from_dict(config.feeder)
-    part, friction = environment.pop("part"), environment.pop("friction")
-    scene = build_feeder(
-        DesignParameters.from_vector(store.design_of_key(key)),
-        part,
-        friction=friction,
-        name=label,
-        **environment,
-    )
-    report = run(Subject.of_scene(scene), margin_settings(config), workers, on_axis=on_axis)
-    data = report.to_dict()
-    store.record_margins(db, key, digest, data)
-    return data
+    def subject() -> Any:
+        from experiments.margins.measure import Subject
+        from feeders.design import DesignParameters
+        from feeders.feeder import build_feeder
+        from feeders.scene_yaml import environment_from_dict
+
+        environment = environment_from_dict(config.feeder)
+        part, friction = environment.pop("part"), environment.pop("friction")
+        scene = build_feeder(
+            DesignParameters.from_vector(store.design_of_key(key)),
+            part,
+            friction=friction,
+            name=label,
+            **environment,
+        )
+        return Subject.of_scene(scene)
+
+    return _stored_or_measured(db, config, key, subject, workers, on_axis, measure)
+
+
+def family_margins(
+    db: sqlite3.Connection,
+    config: OptimizeConfig,
+    family: DeviceFamily,
+    key: str,
+    label: str = "optimum",
+    workers: int = 1,
+    on_axis: AxisCallback | None = None,
+    measure: Callable[..., Any] | None = None,
+) -> dict[str, Any]:
+    """The margins of the device family's design ``key``, named ``label``, stored or measured
+    as the feeder's (:func:`_stored_or_measured`): the axes the family's parameters over its
+    box and friction (:class:`experiments.margins.measure.FamilySubject`, the family's text
+    from the config)."""
+
+    def subject() -> Any:
+        from experiments.margins.measure import FamilySubject
+
+        vector = store.design_of_key(key)
+        return FamilySubject.of_family(family, config.family_yaml, vector, name=label)
+
+    return _stored_or_measured(db, config, key, subject, workers, on_axis, measure)

@@ -11,8 +11,8 @@ from typing import Any
 from experiments.margins.measure import FamilySubject
 from experiments.optimize import store
 from experiments.optimize.config import config_from_dict
-from experiments.optimize.run import DATABASE, family_margins
-from experiments.optimize.tolerance import margin_settings
+from experiments.optimize.run import DATABASE
+from experiments.optimize.tolerance import family_margins, margin_settings
 
 OPTIMUM = [0.4060, 1.2148, 1.2578, -0.8084, 1.6875, 0.1328]
 CUP = {
