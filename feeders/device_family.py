@@ -62,6 +62,7 @@ from feeders.fields import (
     mapping_field,
     name_field,
     number_field,
+    numbers_field,
     read_yaml,
     shown,
 )
@@ -76,6 +77,7 @@ from feeders.scene import (
     Pose,
     Scene,
     orientation_of,
+    wrap_angle,
 )
 from feeders.scene_checks import MAX_COORDINATE, MAX_STARTS, scene_problems
 from feeders.scene_yaml import ENVIRONMENT_KEYS, MAX_OBSTACLES, MAX_VERTICES, environment_from_dict
@@ -564,16 +566,22 @@ def _orientations(spec: Any, prefix: str) -> tuple[OrientationClass, ...]:
                 f"{where}: '{OTHER_ORIENTATION}' is the class of a yaw in no window; "
                 "name the class otherwise"
             )
-        item = mapping_field(item, where, {"yaw", "tolerance"})
-        if "yaw" not in item:
-            raise FamilyError(f"{where}.yaw is required (a centre or a list of centres, rad)")
-        yaws = item["yaw"] if isinstance(item["yaw"], list) else [item["yaw"]]
-        if not 1 <= len(yaws) <= MAX_CENTRES:
-            raise FamilyError(f"{where}.yaw: give 1 to {MAX_CENTRES} centres")
-        centres = tuple(
-            _constant(v, f"{where}.yaw" + (f"[{k}]" if isinstance(item["yaw"], list) else ""))
-            for k, v in enumerate(yaws)
-        )
+        item = mapping_field(item, where, {"yaw", "face_down", "tolerance"})
+        if ("yaw" in item) == ("face_down" in item):
+            raise FamilyError(
+                f"{where}: give one of 'yaw' (a centre or a list of centres, rad) or "
+                "'face_down' (a face of the part, [[x, y], [x, y]], or a list of faces)"
+            )
+        if "face_down" in item:
+            centres = _faces_down(item["face_down"], f"{where}.face_down")
+        else:
+            yaws = item["yaw"] if isinstance(item["yaw"], list) else [item["yaw"]]
+            if not 1 <= len(yaws) <= MAX_CENTRES:
+                raise FamilyError(f"{where}.yaw: give 1 to {MAX_CENTRES} centres")
+            centres = tuple(
+                _constant(v, f"{where}.yaw" + (f"[{k}]" if isinstance(item["yaw"], list) else ""))
+                for k, v in enumerate(yaws)
+            )
         for k, centre in enumerate(centres):
             if abs(centre) > math.pi + 1e-12:
                 raise FamilyError(
@@ -587,6 +595,40 @@ def _orientations(spec: Any, prefix: str) -> tuple[OrientationClass, ...]:
             )
         centres = tuple(max(-math.pi, min(math.pi, c)) for c in centres)
         out.append(OrientationClass(label, centres, min(tolerance, math.pi)))
+    return tuple(out)
+
+
+def _faces_down(spec: Any, field_name: str) -> tuple[float, ...]:
+    """The yaws that put each face down: a face is a segment of the part's outline in the
+    part's frame, ``[[x1, y1], [x2, y2]]``, listed with the part on its left (counter-
+    clockwise along the outline, as a polygon piece's edges run), so its outward normal is
+    (y2 - y1, x1 - x2) / length; the yaw turns that normal to (0, -1), gravity's way. The
+    cup's base: ``[[0.9, -0.5], [0.9, 0.5]]``, yaw -pi/2."""
+    single = (
+        isinstance(spec, list)
+        and len(spec) == 2
+        and all(isinstance(p, list) and len(p) == 2 and not isinstance(p[0], list) for p in spec)
+    )
+    faces = [spec] if single else spec
+    if not isinstance(faces, list) or not 1 <= len(faces) <= MAX_CENTRES:
+        raise FamilyError(
+            f"{field_name}: expected a face [[x, y], [x, y]] or a list of 1 to {MAX_CENTRES}"
+        )
+    out = []
+    for k, face in enumerate(faces):
+        where = field_name if single else f"{field_name}[{k}]"
+        if not (
+            isinstance(face, list) and len(face) == 2 and all(isinstance(q, list) for q in face)
+        ):
+            raise FamilyError(f"{where}: expected a face [[x, y], [x, y]] (two points)")
+        with field_errors_as(FamilyError):
+            points = [numbers_field(p, f"{where}[{i}]", 2) for i, p in enumerate(face)]
+        (x1, y1), (x2, y2) = points
+        length = math.hypot(x2 - x1, y2 - y1)
+        if not length > 0.0:
+            raise FamilyError(f"{where}: the two points are the same; a face has a length")
+        nx, ny = (y2 - y1) / length, (x1 - x2) / length
+        out.append(wrap_angle(-0.5 * math.pi - math.atan2(ny, nx)))
     return tuple(out)
 
 

@@ -242,7 +242,7 @@ def test_a_family_goal_by_yaw_takes_the_class_that_holds_its_yaw() -> None:
             },
             "lies in no orientation class of the part",
         ),
-        ({"orientations": {"a": {"tolerance": 1}}}, "orientations.a.yaw is required"),
+        ({"orientations": {"a": {"tolerance": 1}}}, "orientations.a: give one of 'yaw'"),
         ({"orientations": {"a": {"yaw": 4}}}, "orientations.a.yaw = 4 is outside"),
         ({"orientations": {"a": {"yaw": 0, "tolerance": 0}}}, "orientations.a.tolerance = 0"),
         ({"orientations": {"a": {"yaw": "w"}}}, "orientations.a.yaw = 'w': unknown name"),
@@ -257,3 +257,53 @@ def test_bad_orientations_are_one_line_naming_the_field(changes: dict, words: st
         family_from_dict(data, prefix="family.")
     message = str(error.value)
     assert "\n" not in message and words in message and "family." in message
+
+
+# --- face_down: "this face down" ---------------------------------------------------------
+
+
+def test_a_class_may_be_a_face_down_and_the_cups_faces_give_its_stable_poses() -> None:
+    """Reference: feeders.composite_part.stable_poses, which puts each face of the cup's hull
+    on a floor by statics. The cup's faces in its part frame (base at x = 0.9, walls at
+    y = +-0.5, rims at x = 0), each listed with the cup on its left, give those yaws."""
+    from feeders.composite_part import stable_poses
+
+    faces = {
+        "open end up": [[0.9, -0.5], [0.9, 0.5]],  # the base's outer face
+        "open end down": {"rims": [[[0.0, 0.5], [0.0, 0.15]], [[0.0, -0.15], [0.0, -0.5]]]},
+        "on its side": [[[0.0, -0.5], [0.9, -0.5]], [[0.9, 0.5], [0.0, 0.5]]],
+    }
+    spec = {
+        "open end up": {"face_down": faces["open end up"], "tolerance": "pi/4"},
+        "open end down": {"face_down": faces["open end down"]["rims"], "tolerance": "pi/4"},
+        "on its side": {"face_down": faces["on its side"], "tolerance": "pi/4"},
+    }
+    family = family_from_dict(fig1(orientations=spec, goal=cup_goal(orientation="open end up")))
+    yaws = sorted(c for cls in family.orientations for c in cls.centres)
+    expected = sorted(pose.yaw for pose in stable_poses(cup_part()))
+    assert len(set(np.round(yaws, 9))) == 4
+    assert np.allclose(sorted(set(np.round(yaws, 9))), expected)
+    by_name = {c.name: c.centres for c in family.orientations}
+    assert by_name["open end up"] == (pytest.approx(-math.pi / 2),)
+
+
+@pytest.mark.parametrize(
+    ("face", "says"),
+    [
+        ([[0.9, 0.5], [0.9, 0.5]], "the two points are the same"),
+        ([[0.9, 0.5]], "expected a face"),
+        ("base", "expected a face"),
+        ([[0.9, "x"], [0.9, 0.5]], "face_down[0][1]"),
+    ],
+)
+def test_a_bad_face_is_one_line_naming_the_field(face: Any, says: str) -> None:
+    spec = {"open end up": {"face_down": face}}
+    with pytest.raises(FamilyError, match=r"orientations\.open end up\.face_down") as info:
+        family_from_dict(fig1(orientations=spec))
+    assert says in str(info.value) and "\n" not in str(info.value)
+
+
+def test_a_class_gives_a_yaw_or_a_face_not_both() -> None:
+    spec = {"up": {"yaw": 0.0, "face_down": [[0.9, -0.5], [0.9, 0.5]]}}
+    with pytest.raises(FamilyError, match="give one of 'yaw'"):
+        family_from_dict(fig1(orientations=spec))
