@@ -3,7 +3,8 @@
 What a designer compares at a glance: where the recommended feeder's walls, chutes and pin
 differ from the baseline's (the paper's table3). Both are drawn in the same world frame and
 scale (the feeder's length unit), each feeder as its free interior (``Scene.outline``) and
-its pin (the circles of its obstacles).
+its pin (the circles of its obstacles). A device family's device has no such outline (issue
+24): it is drawn by its pieces, the design's filled and the baseline's dashed.
 """
 
 from __future__ import annotations
@@ -34,7 +35,8 @@ def overlay_figure(
     fig, ax = plt.subplots(figsize=(9.0, 6.5))
     _interior(ax, design, fill=True)
     _interior(ax, baseline, fill=False)
-    points = [s.outline for s in (design, baseline) if s.outline is not None]
+    points = [_points(s) for s in (design, baseline)]
+    points = [p for p in points if len(p)]
     if points:
         xy = np.vstack(points)
         pad = 0.05 * float(np.ptp(xy, axis=0).max())
@@ -56,13 +58,48 @@ def overlay_figure(
         title="pin: the circle",
         title_fontsize=9,
     )
-    ax.set_title(f"{labels[0]} over {labels[1]}: the free interior of each feeder", fontsize=11)
+    drawn = (
+        "the free interior of each feeder"
+        if design.outline is not None
+        else "the pieces of each device"
+    )
+    ax.set_title(f"{labels[0]} over {labels[1]}: {drawn}", fontsize=11)
     return save_figure(fig, path, dpi=100)
 
 
-def _interior(ax: plt.Axes, scene: Scene, fill: bool) -> None:
-    """The feeder's free interior and its pin, filled or as a dashed outline."""
+def _points(scene: Scene) -> np.ndarray:
+    """The points the drawing must hold: the outline, else every piece's vertices and the
+    pins' extents (n, 2; possibly none)."""
     if scene.outline is not None:
+        return np.asarray(scene.outline, dtype=float)
+    points = [np.asarray(p, dtype=float) for p in scene.obstacles.polygons]
+    points += [
+        np.array([[cx - r, cy - r], [cx + r, cy + r]]) for cx, cy, r in scene.obstacles.circles
+    ]
+    return np.vstack(points) if points else np.empty((0, 2))
+
+
+def _pieces(ax: plt.Axes, scene: Scene, fill: bool) -> None:
+    """A device without an outline (a family's): its polygon pieces, filled or dashed."""
+    for poly in scene.obstacles.polygons:
+        if fill:
+            ax.add_patch(
+                Polygon(poly, closed=True, fc=DESIGN_COLOUR, alpha=0.35, ec=DESIGN_COLOUR, zorder=2)
+            )
+        else:
+            ax.add_patch(
+                Polygon(
+                    poly, closed=True, fill=False, ec=BASELINE_COLOUR, ls="--", lw=1.2, zorder=4
+                )
+            )
+
+
+def _interior(ax: plt.Axes, scene: Scene, fill: bool) -> None:
+    """The feeder's free interior (a family's device: its pieces) and its pins, filled or as
+    a dashed outline."""
+    if scene.outline is None:
+        _pieces(ax, scene, fill)
+    else:
         if fill:
             ax.add_patch(
                 Polygon(

@@ -4,8 +4,10 @@ fresh draws (the data of :func:`experiments.drop.compare.compare_designs`).
 Per design: whether the fresh draws confirm it works (said plainly, from the numbers), per
 entry and for both entries the successes, probability with its Wilson 95% interval and mean
 exit time of the design and of the baseline, the paired count of draws only one of them
-passed, both transition matrices, the two feeders drawn over each other, and the 12
-parameters' differences as fractions of Table 2's range.
+passed, both transition matrices, the two devices drawn over each other, and the
+parameters' differences as fractions of their box: the 12-parameter feeder's Table 2 range,
+or a device family's own box (issue 24). The entries are the verdicts' own (a family's, in
+its file's order), and a family's devices are drawn from the family (``comparison_figures``).
 """
 
 from __future__ import annotations
@@ -13,14 +15,16 @@ from __future__ import annotations
 import html
 import re
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from experiments.proportions import wilson_interval
 from experiments.report_kit.cells import DASH, cell, interval
 from experiments.report_kit.page import figure_html, html_table
-from experiments.report_kit.verdict_section import outcome_order
+from experiments.report_kit.verdict_section import entries_of, outcome_order, success_classes
 from feeders.design import PARAMETER_MEANINGS
-from feeders.feeder import ORIENTATIONS
+
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
 
 OVERLAY_PREFIX = "overlay_"
 
@@ -39,20 +43,21 @@ def confirmation(entry: dict[str, Any], drops: int, target: float) -> tuple[bool
     if not v:
         return False, f"not confirmed: the design cannot be built ({entry.get('reason') or DASH})"
     per = v.get("orientations") or {}
-    bounds = {o: (per.get(o) or {}).get("interval") or [0.0, 0.0] for o in ORIENTATIONS}
+    entries = entries_of(v)
+    bounds = {o: (per.get(o) or {}).get("interval") or [0.0, 0.0] for o in entries}
     both = v.get("both") or {}
     n = int(v.get("drops") or 0)
     both_text = (
         f"P(both) {cell(both.get('successes'))}/{n}, 95% lower bound "
         f"{cell((both.get('interval') or [None])[0], '.3f')}"
     )
-    lows = ", ".join(f"{o.replace('_', ' ')} {bounds[o][0]:.3f}" for o in ORIENTATIONS)
-    if all(bounds[o][0] > target for o in ORIENTATIONS):
+    lows = ", ".join(f"{o.replace('_', ' ')} {bounds[o][0]:.3f}" for o in entries)
+    if all(bounds[o][0] > target for o in entries):
         return True, (
             f"confirmed: on {n} fresh draws every entry's 95% lower bound clears the target "
             f"{target:g} ({lows}); {both_text}."
         )
-    below = [o for o in ORIENTATIONS if bounds[o][1] < target]
+    below = [o for o in entries if bounds[o][1] < target]
     if below:
         highs = ", ".join(f"{o.replace('_', ' ')} {bounds[o][1]:.3f}" for o in below)
         return False, (
@@ -76,13 +81,16 @@ def comparison_html(comparison: dict[str, Any], figures: dict[str, Path]) -> lis
     drops = int(comparison["drops"])
     target = float(comparison["target"])
     designs = list(comparison.get("designs") or [])
+    entries = entries_of({"orientations": comparison.get("entries")})
+    each = "both entries each" if len(entries) == 2 else f"all {len(entries)} entries each"
     parts = [
         f'<h2 id="why">Why this design: compared with {e(name)} on the same fresh draws</h2>',
         f"<p>Each compared design and {e(name)} were judged again on the same {drops} fresh "
-        f"perturbed trials (both entries each, seed {int(comparison['seed'])}, not a seed any "
+        f"perturbed trials ({each}, seed {int(comparison['seed'])}, not a seed any "
         "design was ranked with): trial i of every design sees the same entry noise, friction "
         "and manufacturing errors, so the differences below are the designs', not the draws'. "
-        f"Cost: {drops * 2 * (len(designs) + 1)} drops"
+        f"{_designed(comparison)}"
+        f"Cost: {drops * len(entries) * (len(designs) + 1)} drops"
         + (
             f" in {float(comparison['wall_time_s']):.1f} s.</p>"
             if comparison.get("wall_time_s") is not None
@@ -91,9 +99,23 @@ def comparison_html(comparison: dict[str, Any], figures: dict[str, Path]) -> lis
     ]
     if not base.get("verdict"):
         parts.append(f"<p>{e(name)} cannot be built here ({e(str(base.get('reason')))}).</p>")
+    family = comparison.get("family")
     for entry in designs:
-        parts += _design_parts(entry, base, drops, target, figures)
+        parts += _design_parts(entry, base, drops, target, figures, family)
     return parts
+
+
+def _designed(comparison: dict[str, Any]) -> str:
+    """A device family's comparison says whose devices were judged (nothing for the
+    12-parameter feeder's)."""
+    family = comparison.get("family")
+    if not family:
+        return ""
+    names = ", ".join(str(n) for n in comparison.get("parameters") or [])
+    return (
+        f"The designs are device family {html.escape(str(family))}'s ({html.escape(names)}), "
+        "each trial's device made to tolerance from the family as its verdict makes it. "
+    )
 
 
 def _design_parts(
@@ -102,9 +124,13 @@ def _design_parts(
     drops: int,
     target: float,
     figures: dict[str, Path],
+    family: str | None = None,
 ) -> list[str]:
+    """One compared design's parts against the baseline; ``family``: the device family's
+    name (None: the 12-parameter feeder), whose parameters are measured on its box."""
     e = html.escape
     label, name = str(entry["label"]), str(base["label"])
+    entries = entries_of(entry.get("verdict") or base.get("verdict") or {})
     confirmed, sentence = confirmation(entry, drops, target)
     colour = "#2ca02c" if confirmed else "#d62728"
     parts = [
@@ -118,7 +144,7 @@ def _design_parts(
             [
                 [row, *_numbers(entry.get("verdict"), key), *_numbers(base.get("verdict"), key)]
                 for row, key in [
-                    *((o.replace("_", " "), o) for o in ORIENTATIONS),
+                    *((o.replace("_", " "), o) for o in entries),
                     ("both", "both"),
                 ]
             ],
@@ -132,29 +158,40 @@ def _design_parts(
             f"passed from both entries where {e(name)} did not on {paired['design_only']}, "
             f"{e(name)} where {e(label)} did not on {paired['baseline_only']}.</p>"
         )
-    parts.append(_transitions_table(entry, base))
+    parts.append(_transitions_table(entry, base, entries))
     parts.append(
         figure_html(figures, overlay_name(label), f"{label} (filled) drawn over {name} (outline)")
         or f"<p>No drawing: {e(label)} or {e(name)} cannot be built.</p>"
     )
-    parts.append(
-        html_table(
-            ["parameter", "meaning", label, name, "difference", "of Table 2's range"],
-            [
-                [
-                    str(d["name"]),
-                    PARAMETER_MEANINGS.get(str(d["name"]), ""),
-                    cell(d["design"], ".4g"),
-                    cell(d["baseline"], ".4g"),
-                    cell(d["difference"], "+.3g"),
-                    f"{cell(100.0 * d['fraction'], '+.0f')}%",
-                ]
-                for d in entry.get("differences") or []
-            ],
-            (0, 1),
-        )
-    )
+    parts.append(_differences_table(entry, label, name, family))
     return parts
+
+
+def _differences_table(entry: dict[str, Any], label: str, name: str, family: str | None) -> str:
+    """The parameters' differences from the baseline as fractions of their box: Table 2's
+    range and each parameter's meaning for the feeder, a device family's box."""
+    box = "of Table 2's range" if not family else "of the family's box"
+
+    def about(d: dict[str, Any]) -> str:
+        if not family:
+            return PARAMETER_MEANINGS.get(str(d["name"]), "")
+        return f"[{cell(d.get('low'), '.4g')}, {cell(d.get('high'), '.4g')}]"
+
+    return html_table(
+        ["parameter", "meaning" if not family else "family's box", label, name, "difference", box],
+        [
+            [
+                str(d["name"]),
+                about(d),
+                cell(d["design"], ".4g"),
+                cell(d["baseline"], ".4g"),
+                cell(d["difference"], "+.3g"),
+                f"{cell(100.0 * d['fraction'], '+.0f')}%",
+            ]
+            for d in entry.get("differences") or []
+        ],
+        (0, 1),
+    )
 
 
 def _numbers_header(label: str) -> list[str]:
@@ -175,15 +212,18 @@ def _numbers(verdict: dict[str, Any] | None, key: str) -> list[str]:
     ]
 
 
-def _transitions_table(entry: dict[str, Any], base: dict[str, Any]) -> str:
-    """Both transition matrices in one table: a row per design and entry, a column per
-    outcome either of them reached."""
+def _transitions_table(
+    entry: dict[str, Any], base: dict[str, Any], entries: tuple[str, ...]
+) -> str:
+    """Both transition matrices in one table: a row per design and entry (``entries``), a
+    column per outcome either of them reached, the goal's classes first."""
     rows = [
         (str(x["label"]), (x.get("verdict") or {}).get("transitions") or {}) for x in (entry, base)
     ]
+    success = success_classes(entry.get("verdict") or base.get("verdict") or {})
     outcomes: list[str] = []
     for _, matrix in rows:
-        outcomes += [c for c in outcome_order(matrix) if c not in outcomes]
+        outcomes += [c for c in outcome_order(matrix, success) if c not in outcomes]
     if not outcomes:
         return ""
     return html_table(
@@ -195,26 +235,35 @@ def _transitions_table(entry: dict[str, Any], base: dict[str, Any]) -> str:
                 *(cell((matrix.get(o) or {}).get(c, 0)) for c in outcomes),
             ]
             for label, matrix in rows
-            for o in ORIENTATIONS
+            for o in entries
         ],
         (0, 1),
     )
 
 
 def comparison_figures(
-    comparison: dict[str, Any], figures_dir: Path, **feeder_options: Any
+    comparison: dict[str, Any],
+    figures_dir: Path,
+    family: DeviceFamily | None = None,
+    **feeder_options: Any,
 ) -> dict[str, Path]:
-    """Per design that can be built (and a baseline that can), its feeder filled over the
-    baseline's outline (:func:`experiments.pictures.overlay.overlay_figure`); name -> PNG.
+    """Per design that can be built (and a baseline that can), its device filled over the
+    baseline's (:func:`experiments.pictures.overlay.overlay_figure`); name -> PNG. A device
+    family's comparison gives its ``family``, whose devices are built; else
     ``feeder_options`` (part, friction, ...) go to :func:`feeders.feeder.build_feeder`."""
+    import dataclasses
+
     from experiments.pictures.overlay import overlay_figure
     from feeders.design import DesignError, DesignParameters
     from feeders.feeder import DegenerateDesign, build_feeder
 
     def scene(entry: dict[str, Any]) -> Any:
+        label = str(entry["label"])
         try:
+            if family is not None:
+                return dataclasses.replace(family.build(list(entry["values"])), name=label)
             design = DesignParameters.from_vector(list(entry["values"]))
-            return build_feeder(design, name=str(entry["label"]), **feeder_options)
+            return build_feeder(design, name=label, **feeder_options)
         except (DegenerateDesign, DesignError, ValueError):
             return None
 
@@ -237,10 +286,12 @@ def comparison_figures(
 def slower_exit_time(entry: dict[str, Any]) -> float | None:
     """The larger of the entries' mean exit times (s) on the fresh draws: what a feeder's
     rate is limited by; None when unknown."""
-    per = ((entry.get("verdict") or {}).get("orientations")) or {}
-    times = [(per.get(o) or {}).get("mean_exit_time_s") for o in ORIENTATIONS]
+    verdict = entry.get("verdict") or {}
+    per = verdict.get("orientations") or {}
+    entries = entries_of(verdict)
+    times = [(per.get(o) or {}).get("mean_exit_time_s") for o in entries]
     known = [float(t) for t in times if t is not None]
-    return max(known) if len(known) == len(ORIENTATIONS) else None
+    return max(known) if len(known) == len(entries) else None
 
 
 def fresh_ranking(comparison: dict[str, Any]) -> list[dict[str, Any]]:

@@ -18,14 +18,16 @@ from typing import Any
 from experiments.report_kit.cells import cell
 from experiments.report_kit.comparison_section import confirmation
 from experiments.report_kit.margins_section import margins_sentence
-from feeders.feeder import ORIENTATIONS
+from experiments.report_kit.verdict_section import entries_of
 
 
 def _exit_times(entry: dict[str, Any]) -> str:
-    per = ((entry.get("verdict") or {}).get("orientations")) or {}
+    """The mean exit time from each of the verdict's entries (a device family's its own)."""
+    verdict = entry.get("verdict") or {}
+    per = verdict.get("orientations") or {}
     return ", ".join(
         f"{o.replace('_', ' ')} {cell((per.get(o) or {}).get('mean_exit_time_s'), '.2f')} s"
-        for o in ORIENTATIONS
+        for o in entries_of(verdict)
     )
 
 
