@@ -26,6 +26,8 @@ from feeders.device_family import (
 )
 from feeders.fields import FieldError, shown
 
+FAMILY_DEFAULT = "default"  # a family's default design by name: a baseline, an optimiser's start
+
 
 def family_file(given: str, base: Path) -> Path | None:
     """The family file ``given`` names: a file (relative to ``base``, the config's folder), or
@@ -74,6 +76,12 @@ def read_family_field(
     except FamilyError as exc:
         raise error(f"family: {shown(path)}: {exc}") from None
     return str(path), text, family
+
+
+def family_default(family: DeviceFamily) -> tuple[str, list[float]]:
+    """``(FAMILY_DEFAULT, the family's default vector)``: what a job compares a family's
+    designs with unless given another baseline (the paper's feeder's is table3)."""
+    return FAMILY_DEFAULT, [float(v) for v in family.default()]
 
 
 def family_record(family: DeviceFamily, text: str) -> dict[str, Any]:

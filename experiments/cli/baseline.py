@@ -1,12 +1,20 @@
-"""``--baseline``: the design a report compares its recommendation with (the paper's table3
-unless given), named as ``--design`` names one: a preset or 12 comma-separated values. Checked
-when the command starts, so a bad value is one line before any work is done."""
+"""``--baseline``: the design a report compares its recommendation with, named as ``--design``
+names one: the paper's feeder's a preset or 12 comma-separated values (table3 unless given);
+a device family's ``default`` (its default design, also when not given) or its values in its
+parameters' order. Checked when the command starts, so a bad value is one line before any
+work is done: its form at once, against what is designed (the feeder or a family) as soon as
+the config or the sweep's database says which."""
 
 from __future__ import annotations
 
 import argparse
+import math
+from typing import TYPE_CHECKING
 
 from experiments.cli.usage import UsageError
+
+if TYPE_CHECKING:
+    from feeders.device_family import DeviceFamily
 
 DEFAULT_BASELINE = "table3"
 
@@ -37,3 +45,53 @@ def baseline_of(text: str | None) -> tuple[str, list[float]]:
         raise UsageError(f"--baseline: {exc}") from None
     label = text.strip() if "," not in text else "baseline"
     return label, [float(v) for v in design.to_vector()]
+
+
+def family_baseline_of(text: str | None, family: DeviceFamily) -> tuple[str, list[float]]:
+    """``(label, values)`` of a ``--baseline`` value for a device family: its default design
+    (``default``, or None: not given) labelled ``default``, or one number per parameter in
+    the family's order labelled ``baseline``; :class:`UsageError` naming the option and what
+    is allowed, or why those values cannot be built."""
+    from experiments.family_config import FAMILY_DEFAULT, family_default
+    from feeders.feeder import DegenerateDesign
+
+    if text in (None, FAMILY_DEFAULT):
+        return family_default(family)
+    names = family.vector_names
+    values = _numbers(str(text))
+    if values is None or len(values) != len(names):
+        raise UsageError(
+            f"--baseline = '{text}'; allowed with family {family.name}: {FAMILY_DEFAULT}, or "
+            f"{len(names)} comma-separated numbers ({', '.join(names)})"
+        )
+    try:
+        family.build(values)
+    except DegenerateDesign as exc:
+        raise UsageError(f"--baseline = '{text}' cannot be built: {exc.reason}") from None
+    return "baseline", values
+
+
+def baseline_for(text: str | None, family: DeviceFamily | None) -> tuple[str, list[float]]:
+    """``--baseline`` for what is designed: the paper's feeder (``family`` None,
+    :func:`baseline_of`) or a device family (:func:`family_baseline_of`)."""
+    return baseline_of(text) if family is None else family_baseline_of(text, family)
+
+
+def check_baseline_form(text: str | None) -> None:
+    """Refuse at once a ``--baseline`` that no design could be: anything but a preset,
+    ``default`` or comma-separated finite numbers (how many, and whether ``default`` or a
+    preset is allowed, is checked by :func:`baseline_for` once the family is known)."""
+    from experiments.family_config import FAMILY_DEFAULT
+
+    if text in (None, FAMILY_DEFAULT) or ("," in str(text) and _numbers(str(text))):
+        return
+    baseline_of(text)
+
+
+def _numbers(text: str) -> list[float] | None:
+    """The comma-separated finite numbers of ``text``, or None when it is not such a list."""
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        return None
+    return values if all(math.isfinite(v) for v in values) else None

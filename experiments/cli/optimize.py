@@ -14,7 +14,7 @@ from contextlib import closing
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from experiments.cli.baseline import add_baseline_argument, baseline_of
+from experiments.cli.baseline import add_baseline_argument, baseline_for
 from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, out_dir
 from experiments.names import EXECUTOR_NAMES
@@ -199,34 +199,6 @@ def _nearest_failing(db: Any) -> list[dict]:
     return [row for _, row in sorted(rows, key=lambda r: r[0])]
 
 
-def _baseline(text: str | None, config: OptimizeConfig) -> tuple[str, list[float]] | None:
-    """``--baseline`` for ``config``: the feeder's as :func:`baseline_of` reads it; with a
-    family, None (its default) when not given, ``default``, or the family's values in its
-    parameters' order."""
-    family = config.device_family()
-    if family is None:
-        return baseline_of(text)
-    if text in (None, "default"):
-        return None
-    names = family.vector_names
-    try:
-        values = [float(v) for v in text.split(",")]
-    except ValueError:
-        values = []
-    if len(values) != len(names) or not all(v == v and abs(v) != float("inf") for v in values):
-        raise UsageError(
-            f"--baseline = '{text}'; allowed with family {family.name}: default, or "
-            f"{len(names)} comma-separated numbers ({', '.join(names)})"
-        )
-    from feeders.feeder import DegenerateDesign
-
-    try:
-        family.build(values)
-    except DegenerateDesign as exc:
-        raise UsageError(f"--baseline = '{text}' cannot be built: {exc.reason}") from None
-    return "baseline", values
-
-
 def run(args: argparse.Namespace) -> int:
     from experiments.optimize.config import OptimizeConfigError, config_from_dict, load_config
     from experiments.optimize.store import StoreDamaged, StoreMismatch
@@ -245,7 +217,7 @@ def run(args: argparse.Namespace) -> int:
         from experiments.executors.cluster import check_scheduler
 
         check_scheduler(args.scheduler)
-    baseline = _baseline(args.baseline, config)
+    baseline = baseline_for(args.baseline, config.device_family())
     best = sweep_best_designs(args.sweep, config)
     if not config.presets and not best:
         raise UsageError(

@@ -48,7 +48,12 @@ from typing import TYPE_CHECKING, Any
 
 from experiments.config_files import resolve_config
 from experiments.drop.perturbations import Perturbations
-from experiments.family_config import family_of_text, read_family_field, text_digest
+from experiments.family_config import (
+    FAMILY_DEFAULT,
+    family_of_text,
+    read_family_field,
+    text_digest,
+)
 from experiments.names import OPTIMIZER_NAMES, PRESET_NAMES
 from feeders.fields import (
     FieldError,
@@ -65,7 +70,6 @@ from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 if TYPE_CHECKING:
     from feeders.device_family import DeviceFamily
 
-FAMILY_DEFAULT = "default"  # start.presets' name of a family's default vector
 MAX_BUDGET = 1_000_000
 MAX_TRIALS = 10_000
 METHOD_STARTS = ("starts", "best")

@@ -41,10 +41,10 @@ from experiments.drop.family_verdict import entry_names
 from experiments.drop.passive import eq10_objective, passive_drop
 from experiments.drop.verdict import Verdict, classes_of
 from experiments.executors import open_pool
-from experiments.family_config import family_record
+from experiments.family_config import family_default, family_record
 from experiments.optimize import store
 from experiments.optimize.comparison import stored_comparison, verdict_of_trials
-from experiments.optimize.config import FAMILY_DEFAULT, OptimizeConfig
+from experiments.optimize.config import OptimizeConfig
 from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
 from experiments.optimize.methods import METHODS, POPULATION_METHODS
 from experiments.optimize.objective import eq10_terms
@@ -123,7 +123,7 @@ def default_baseline(config: OptimizeConfig | None = None) -> Baseline:
     ``default``) when ``config`` designs a family."""
     family = None if config is None else config.device_family()
     if family is not None:
-        return FAMILY_DEFAULT, [float(v) for v in family.default()]
+        return family_default(family)
     return REFERENCE, preset(REFERENCE).to_vector().tolist()
 
 
