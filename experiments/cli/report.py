@@ -10,7 +10,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TextIO
 
-from experiments.cli.baseline import add_baseline_argument, baseline_of
+from experiments.cli.baseline import add_baseline_argument, baseline_for, check_baseline_form
 from experiments.cli.usage import UsageError
 
 MARGINS_AXES = 16  # the margins' axes (experiments.margins.axes): 12 parameters, mu, the part
@@ -40,7 +40,7 @@ WRITTEN = (
 
 
 def run(args: argparse.Namespace) -> int:
-    baseline_of(args.baseline)  # a bad --baseline is one line before any work
+    check_baseline_form(args.baseline)  # a bad --baseline is one line before any work
     if args.workers is not None:
         from experiments.cli.usage import check_count
 
@@ -137,6 +137,7 @@ def finish(
     from experiments.progress import say
     from experiments.report_kit.cache import report_intact, report_state
     from experiments.sweep import results_db
+    from experiments.sweep.family import database_family
     from experiments.sweep.report_cache import (
         OMPL_DATABASE,
         load_cache,
@@ -147,9 +148,11 @@ def finish(
     from experiments.sweep.summary import summary_table
 
     quiet = bool(getattr(args, "quiet", False))
-    baseline = baseline_of(getattr(args, "baseline", None))
     results = out / "results.sqlite"
     results_db.check_database(results)  # refused as the summary would refuse it
+    found = database_family(results)  # --baseline's meaning: the feeder's, or a family's
+    family = None if found is None else found[0]
+    baseline = baseline_for(getattr(args, "baseline", None), family)
     rows = report_key(results)  # before the summary: a key never newer than what it keys
     key = with_baseline(rows, baseline)
     cache = load_cache(out, key)

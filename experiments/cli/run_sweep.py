@@ -10,7 +10,7 @@ import time
 from pathlib import Path
 from typing import Any, TextIO
 
-from experiments.cli.baseline import add_baseline_argument, baseline_of
+from experiments.cli.baseline import add_baseline_argument, baseline_for, check_baseline_form
 from experiments.cli.kernels import compile_once
 from experiments.cli.report import finish
 from experiments.cli.usage import UsageError, out_dir
@@ -122,7 +122,7 @@ def run(args: argparse.Namespace) -> int:
     executor the kernels are compiled here once, before the workers start, which then only
     load them (on a cold cache each worker compiled them itself)."""
     _executor_flags(args)
-    baseline_of(args.baseline)
+    check_baseline_form(args.baseline)
     from experiments.sweep.config import ConfigError, config_from_dict, load_config
 
     try:
@@ -136,6 +136,7 @@ def run(args: argparse.Namespace) -> int:
             config = config_from_dict({**config.to_dict(), **overrides})
     except ConfigError as exc:
         raise UsageError(str(exc)) from None
+    baseline_for(args.baseline, config.device_family())  # the feeder's, or the family's
     _check_scheduler(args)
     out = out_dir(args.out or DEFAULT_OUT / config.name, inputs=[Path(args.config)])
     assert out is not None

@@ -22,10 +22,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from experiments.family_config import family_of_text
 from experiments.report_kit.comparison_section import OVERLAY_PREFIX, comparison_figures
 from experiments.report_kit.margins_section import MARGINS, margins_figures
 from experiments.report_kit.verdict_section import STRIP_PREFIX
+from experiments.sweep.family import database_family
 from experiments.sweep.report_figures import (
     best_figure,
     feasible_set_figure,
@@ -40,7 +40,7 @@ from experiments.sweep.report_recommendation import (
     recommendation_of,
 )
 from experiments.sweep.report_verdicts import TRANSITIONS, comparison_of, verdict_figures
-from experiments.sweep.results_db import connect, parameter_names, stored_family
+from experiments.sweep.results_db import connect, parameter_names
 
 if TYPE_CHECKING:
     from feeders.device_family import DeviceFamily
@@ -83,8 +83,8 @@ def report_with_findings(
     ``best``, ``quarantined``, and with a passive rung ``truth``, ``passive``, ``pipelines``);
     the best designs with a verdict get the strips of their nominal drops
     (:mod:`experiments.sweep.report_verdicts`) and, the top ``COMPARED`` of them, the "Why
-    this design" section: judged again beside ``baseline`` (``(label, 12 values)``, default
-    table3) on the same fresh draws, drawn over it
+    this design" section: judged again beside ``baseline`` (``(label, values)``, default
+    table3, or a device family's default design) on the same fresh draws, drawn over it
     (:func:`experiments.sweep.report_verdicts.comparison_of`, 40 trials of both entries per
     design and for the baseline). The page opens with the recommendation
     (:func:`experiments.sweep.report_recommendation.recommendation_of`: the first of those
@@ -119,9 +119,10 @@ def report_with_findings(
     figures.update(verdict_figures(summary, figures_dir, family))
     comparison: dict[str, Any] | None = None
     if summary.get("passive"):
-        comparison = comparison_of(summary, Path(db_path), baseline=baseline)
+        comparison = comparison_of(summary, Path(db_path), baseline=baseline, family=family)
         if "absent" not in comparison:
-            figures.update(comparison_figures(comparison, figures_dir, **_environment(summary)))
+            drawn = {"family": family} if family is not None else _environment(summary)
+            figures.update(comparison_figures(comparison, figures_dir, **drawn))
     recommendation = recommendation_of(summary, comparison)
     margins_data: dict[str, Any] | None = None
     if margins and recommendation["confirmed"] and comparison is not None:
@@ -163,11 +164,9 @@ def _environment(summary: dict) -> dict[str, Any]:
 
 
 def _family(db_path: str | Path) -> DeviceFamily | None:
-    """The device family the sweep at ``db_path`` designs, rebuilt from the text its
-    database keeps (None: the 12-parameter feeder)."""
-    with closing(connect(db_path, readonly=True)) as db:
-        record = stored_family(db)
-    return None if record is None else family_of_text(record["yaml"], record["name"])
+    """The device family the sweep at ``db_path`` designs (None: the 12-parameter feeder)."""
+    found = database_family(db_path)
+    return None if found is None else found[0]
 
 
 def _read_db(db_path: str | Path) -> dict[str, Any]:

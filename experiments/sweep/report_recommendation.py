@@ -7,14 +7,18 @@ recommendation is the first of them ranked on those draws
 (:func:`experiments.report_kit.comparison_section.fresh_ranking`) only when the fresh draws
 confirm it works, and only that design gets its tolerance margins
 (:func:`experiments.margins.run.margins_of`: per design parameter, friction and part
-dimension, the interval over which P(both) stays at or above the passive rung's target).
+dimension, the interval over which P(both) stays at or above the passive rung's target; a
+device family's design, issue 24: per parameter of the family over its box, and friction).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from experiments.margins.measure import MarginSubject
 
 CONFIRMED = "confirmed"
 NOT_REJUDGED = "not re-judged"
@@ -120,27 +124,21 @@ def margins_of_recommended(
     progress: Progress | None = None,
 ) -> dict[str, Any] | None:
     """The margins (:meth:`experiments.margins.run.MarginsReport.to_dict`) of the compared
-    design ``label``, with the sweep's part, friction and feeder options and its passive
-    rung's target, step and perturbations, ``MARGINS_DROPS`` trials per value on a seed
-    derived from the sweep's (:func:`margins_seed`), on ``workers`` processes (default the
-    sweep's workers); None when the sweep has no passive rung."""
-    from experiments.margins.axes import axes
-    from experiments.margins.measure import MarginSettings, Subject
-    from experiments.margins.run import margins_of
+    design ``label`` (:func:`margin_subject`: the feeder's 16 axes, or a device family's
+    parameters over its box and mu) with the sweep's passive rung's target, step and
+    perturbations, ``MARGINS_DROPS`` trials per value on a seed derived from the sweep's
+    (:func:`margins_seed`), on ``workers`` processes (default the sweep's workers); None
+    when the sweep has no passive rung."""
+    from experiments.margins.measure import MarginSettings
+    from experiments.margins.run import axes_of, margins_of
     from experiments.sweep.report_verdicts import passive_settings, sweep_config
-    from feeders.design import DesignParameters
-    from feeders.feeder import build_feeder
-    from feeders.scene_yaml import environment_from_dict
 
     config = sweep_config(db_path)
     settings = passive_settings(config)
     if settings is None:
         return None
     entry = next(d for d in comparison["designs"] if str(d["label"]) == label)
-    environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
-    scene = build_feeder(
-        DesignParameters.from_vector(list(entry["values"])), name=label, **environment
-    )
+    subject = margin_subject(summary, db_path, list(entry["values"]), label)
     sweep_seed = int((config.get("designs") or {}).get("seed", 0))
     avoid = (*comparison.get("ranked_with", ()), int(comparison["seed"]))
     margin_settings = MarginSettings(
@@ -153,9 +151,9 @@ def margins_of_recommended(
     )
     count = workers if workers is not None else int(config.get("workers") or 1)
     if progress is not None:
-        progress("margins", {"design": label, "axes": len(axes())})
+        progress("margins", {"design": label, "axes": len(axes_of(subject))})
     report = margins_of(
-        Subject.of_scene(scene),
+        subject,
         margin_settings,
         max(1, count),
         on_axis=None
@@ -163,3 +161,26 @@ def margins_of_recommended(
         else lambda margin: progress("axis", {"parameter": margin.axis.name}),
     )
     return report.to_dict()
+
+
+def margin_subject(
+    summary: dict[str, Any], db_path: Path, values: list[float], label: str
+) -> MarginSubject:
+    """What the margins of the design ``values`` (named ``label``) vary: a device family's
+    design (:class:`experiments.margins.measure.FamilySubject`, the family and its text as
+    the sweep's database keeps them: its parameters over its box and mu, the family's part
+    and friction), else the feeder's built with the sweep's part, friction and options
+    (:class:`experiments.margins.measure.Subject`: its 12 parameters, mu and the peg)."""
+    from experiments.margins.measure import FamilySubject, Subject
+    from experiments.sweep.family import database_family
+    from feeders.design import DesignParameters
+    from feeders.feeder import build_feeder
+    from feeders.scene_yaml import environment_from_dict
+
+    found = database_family(db_path)
+    if found is not None:
+        family, text = found
+        return FamilySubject.of_family(family, text, values, name=label)
+    environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
+    scene = build_feeder(DesignParameters.from_vector(values), name=label, **environment)
+    return Subject.of_scene(scene)

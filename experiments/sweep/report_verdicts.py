@@ -40,6 +40,7 @@ from feeders.feeder import ORIENTATIONS
 
 if TYPE_CHECKING:
     from feeders.device_family import DeviceFamily
+    from feeders.feeder_family import Family
 
 TRANSITIONS = "transitions"
 COMPARED = 3  # the best designs judged again against the baseline on fresh draws
@@ -334,11 +335,28 @@ def passive_settings(config: dict[str, Any]) -> VerdictSettings | None:
     )
 
 
-def default_baseline() -> tuple[str, list[float]]:
-    """``(BASELINE, its 12 values)``: the paper's table3."""
+def default_baseline(family: DeviceFamily | None = None) -> tuple[str, list[float]]:
+    """``(BASELINE, its 12 values)``: the paper's table3; a device family's default design,
+    labelled ``default`` (:func:`experiments.family_config.family_default`)."""
+    from experiments.family_config import family_default
     from feeders.design import preset
 
+    if family is not None:
+        return family_default(family)
     return BASELINE, [float(v) for v in preset(BASELINE).to_vector()]
+
+
+def compared_device(summary: dict, family: DeviceFamily | None) -> Family:
+    """What the comparison judges designs of: the sweep's device ``family``, else the
+    12-parameter feeder as a family (:class:`feeders.feeder_family.FeederFamily`) with the
+    sweep's part, friction and feeder options (the feeder's own verdicts, trial for
+    trial)."""
+    from feeders.feeder_family import FeederFamily
+    from feeders.scene_yaml import environment_from_dict
+
+    if family is not None:
+        return family
+    return FeederFamily(**environment_from_dict(summary.get("feeder") or {}, prefix="feeder."))
 
 
 def comparison_of(
@@ -346,33 +364,32 @@ def comparison_of(
     db_path: Path,
     drops: int | None = None,
     baseline: tuple[str, list[float]] | None = None,
+    family: DeviceFamily | None = None,
 ) -> dict[str, Any]:
     """The best designs that work by the sweep's own verdict (at most ``COMPARED``) judged
-    again beside ``baseline`` (``(label, 12 values)``, default the paper's table3) on the
-    same fresh draws (:func:`experiments.drop.compare.compare_designs`, ``drops`` trials
-    each, default ``FRESH_DROPS``) with the sweep's passive settings, part and feeder, on a
-    seed that is no design's verdict seed; the designs in the order of
+    again beside ``baseline`` (``(label, values)``; default the paper's table3, or a device
+    family's default design, :func:`default_baseline`) on the same fresh draws
+    (:func:`experiments.drop.compare.compare_family_designs`, ``drops`` trials each,
+    default ``FRESH_DROPS``) with the sweep's passive settings, on a seed that is no design's
+    verdict seed; the designs are the sweep's device (:func:`compared_device`: its
+    ``family``, read from the database when the summary names one and none is given, or the
+    feeder with the sweep's part and options), each made per trial as its verdict made it.
+    The designs come in the order of
     :func:`experiments.report_kit.comparison_section.fresh_ranking` (confirmed first), not
     the order they were selected in. ``{"absent": reason, "baseline": {"label": ...}}``
-    when there is nothing to compare, as for a device family's sweep (the comparison is the
-    12-parameter feeder's)."""
-    from experiments.drop.compare import FRESH_DROPS, compare_designs, fresh_seed
+    when there is nothing to compare."""
+    from experiments.drop.compare import FRESH_DROPS, compare_family_designs, fresh_seed
     from experiments.report_kit.comparison_section import fresh_ranking
+    from experiments.sweep.family import database_family
     from experiments.sweep.job import verdict_seed
-    from feeders.design import DesignParameters
-    from feeders.scene_yaml import environment_from_dict
 
-    name, base_values = baseline or default_baseline()
+    if family is None and summary.get("family"):
+        found = database_family(db_path)
+        family = None if found is None else found[0]
+    name, base_values = baseline or default_baseline(family)
     best = with_verdicts(summary)[:COMPARED]
     if not best:
         return {"absent": "no design works, so none is recommended", "baseline": {"label": name}}
-    if summary.get("family"):
-        return {
-            "absent": "the sweep is of the device family "
-            f"'{summary['family']['name']}', and the comparison on fresh draws is the "
-            "12-parameter feeder's (not yet a family's)",
-            "baseline": {"label": name},
-        }
     config = sweep_config(db_path)
     settings = passive_settings(config)
     if settings is None:
@@ -382,26 +399,22 @@ def comparison_of(
         }
     sweep_seed = int((config.get("designs") or {}).get("seed", 0))
     ranked_with = [verdict_seed(sweep_seed, int(b["design_id"])) for b in best]
-    environment = environment_from_dict(summary.get("feeder") or {}, prefix="feeder.")
-    try:
-        designs = {
-            f"design {b['design_id']}": DesignParameters.from_vector(list(b["values"]))
-            for b in best
-        }
+    device = compared_device(summary, family)
+    try:  # the designs' and the baseline's values are the device's, before any drop
+        designs = {f"design {b['design_id']}": device.values(list(b["values"])) for b in best}
+        base = device.values(list(base_values))
     except ValueError as exc:
         return {
-            "absent": f"a best design's values are not a design ({exc})",
+            "absent": f"a best design's or the baseline's values are not a design ({exc})",
             "baseline": {"label": name},
         }
-    comparison = compare_designs(
+    comparison = compare_family_designs(
+        device,
         designs,
-        (name, DesignParameters.from_vector(list(base_values))),
+        (name, base),
         settings,
         fresh_seed(sweep_seed, ranked_with),
         drops or FRESH_DROPS,
-        part=environment.pop("part"),
-        friction=environment.pop("friction"),
-        **environment,
     )
     comparison["ranked_with"] = ranked_with
     order = [r["label"] for r in fresh_ranking(comparison)]

@@ -20,6 +20,7 @@ from experiments.sweep.config import config_from_dict
 from experiments.sweep.ladder import run_sweep
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+FIG1_CONFIG = "family: fig1\ndesigns: {count: 2, seed: 1}\nladder: [{level: passive}]\n"
 
 
 def test_the_margins_bar_has_one_step_per_axis_from_the_start() -> None:
@@ -96,9 +97,44 @@ def test_report_refuses_a_bad_baseline_in_one_line(tmp_path: Path) -> None:
 
 
 def test_run_refuses_a_bad_baseline_before_any_work() -> None:
+    """Three numbers could be a device family's baseline: the config says what is designed
+    (here the feeder, which takes 12), and the refusal comes before the sweep."""
     from experiments.cli import run_sweep
     from experiments.cli.usage import UsageError
 
-    args = argparse.Namespace(executor="local", scheduler=None, baseline="1,2,3")
+    args = argparse.Namespace(
+        executor="local", scheduler=None, baseline="1,2,3", config="default", workers=None
+    )
+    args.designs = None
     with pytest.raises(UsageError, match="--baseline"):
         run_sweep.run(args)
+
+
+@pytest.mark.parametrize(
+    ("config", "baseline", "allowed"),
+    [
+        ("default", "default", "--baseline: "),  # the feeder has no 'default' design
+        ("fig1-family", "table3", "allowed with family fig1: default, or 6 comma-separated"),
+        ("fig1-family", "1,2,3", "allowed with family fig1: default, or 6 comma-separated"),
+    ],
+)
+def test_run_reads_the_baseline_as_the_config_designs_it(
+    tmp_path: Path, config: str, baseline: str, allowed: str
+) -> None:
+    """``--baseline`` of a family sweep is ``default`` or the family's values (as the
+    optimiser reads it); the feeder's presets and 12 values are not a family's, nor is
+    ``default`` the feeder's. Refused in one line before the sweep writes anything."""
+    from experiments.cli import run_sweep
+    from experiments.cli.usage import UsageError
+
+    if config == "fig1-family":
+        (tmp_path / "fig1.yaml").write_text(FIG1_CONFIG)
+        config = str(tmp_path / "fig1.yaml")
+    args = argparse.Namespace(
+        executor="local", scheduler=None, baseline=baseline, config=config, workers=None
+    )
+    args.designs, args.out = None, tmp_path / "out"
+    with pytest.raises(UsageError, match=allowed) as refused:
+        run_sweep.run(args)
+    assert "\n" not in str(refused.value)
+    assert not (tmp_path / "out").exists()
