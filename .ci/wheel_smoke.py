@@ -207,9 +207,8 @@ CLAIMS: dict[str, Check] = {
         "optimize/fig1-cup/evaluations.sqlite", "optimize/fig1-cup/figures/strip_design_*.png"
     ),
     "partfeeder bench --part": contains(r"^cup / peg: "),
-    "partfeeder margins --family fig1-cup --values 0.406,1.2148,1.2578,-0.8084,1.6875,0.1328": (
-        contains(r"^pin_y ")
-    ),
+    "partfeeder margins --family fig1-cup --values "
+    "0.6907,1.2855,1.2213,1.8129,1.1795,0.5437,0.1447,0.4392": contains(r"^pin_dy "),
     "partfeeder bench --verdict": contains(r"^  wilson / screen \+ sprt: "),
     "partfeeder simulate --family fig1 --samples 40": contains(r"^open_trailing "),
     "partfeeder run --json": is_json,

@@ -9,8 +9,10 @@ import json
 import pytest
 from cli_process import noise, run_cli
 
-OPTIMUM = "0.4060,1.2148,1.2578,-0.8084,1.6875,0.1328"  # fig1-cup's optimum (116/120)
-NAMES = ["theta", "chute_width", "exit_width", "pin_x", "pin_y", "pin_r"]
+OPTIMUM = "0.6907,1.2855,1.2213,1.8129,1.1795,0.5437,0.1447,0.4392"  # fig1-cup's optimum (120/120)
+NAMES = [
+    "theta", "chute_width", "exit_width", "lip_height", "pin_dx", "pin_dy", "pin_r", "head_width",
+]  # fmt: skip
 
 
 def test_a_familys_margins_as_json_over_its_parameters_and_mu(tmp_path):
@@ -30,11 +32,12 @@ def test_a_familys_margins_as_json_over_its_parameters_and_mu(tmp_path):
     assert data["part"] is None  # no part axes for a family
     assert list(data["values"].values()) == [float(v) for v in OPTIMUM.split(",")]
     assert [row["parameter"] for row in data["margins"]] == [*NAMES, "mu"]
-    assert [row["box_source"] for row in data["margins"]] == ["the family's box"] * 6 + [
+    assert [row["box_source"] for row in data["margins"]] == ["the family's box"] * 8 + [
         "stated range"
     ]
-    assert [row["box"] for row in data["margins"][:6]] == [
-        [0.3, 0.9], [1.1, 1.3], [1.1, 1.3], [-1.8, 0.6], [0.3, 2.8], [0.1, 0.3],
+    assert [row["box"] for row in data["margins"][:8]] == [
+        [0.3, 0.7], [1.1, 1.3], [1.1, 1.3], [1.2, 2.2], [1.1, 1.6], [0.0, 1.0], [0.1, 0.3],
+        [0.4, 1.0],
     ]  # fmt: skip
     for row in data["margins"]:
         if row["interval"] is not None:
@@ -54,18 +57,18 @@ BAD = {
     ),
     "too few values": (
         ["--family", "fig1-cup", "--values", "0.4,1.2"],
-        "--values: 2 numbers given; the family fig1-cup has 6 parameters",
+        "--values: 2 numbers given; the family fig1-cup has 8 parameters",
     ),
     "not numbers": (
-        ["--family", "fig1-cup", "--values", "a,b,c,d,e,f"],
-        "--values = 'a,b,c,d,e,f': expected 6 comma-separated numbers",
+        ["--family", "fig1-cup", "--values", "a,b,c,d,e,f,g,h"],
+        "--values = 'a,b,c,d,e,f,g,h': expected 8 comma-separated numbers",
     ),
     "not finite": (
-        ["--family", "fig1-cup", "--values", "nan,1.2,1.2,-0.8,1.6,0.13"],
+        ["--family", "fig1-cup", "--values", "nan,1.2,1.2,1.7,1.35,0.4,0.2,0.7"],
         "--values: fig1-cup: parameter theta = nan is not finite",
     ),
     "cannot be built": (
-        ["--family", "fig1-cup", "--values", "0.4,1.2,1.2,0.6,0.3,0.3"],
+        ["--family", "fig1-cup", "--values", "0.45,1.2,1.2,1.2,1.6,1.0,0.2,1.0"],
         "--values: the family's design cannot be built: pin B sinks into the funnel",
     ),
     "values without a family": (
