@@ -74,11 +74,11 @@ SHORTER: dict[str, tuple[str, str]] = {
     ),
     "partfeeder run fig1-cup": (
         "partfeeder run fig1-cup --designs 24",
-        "~1.5 min: 24 of the 1000 designs",
+        "~4.5 min: 24 of the 1000 designs",
     ),
     "partfeeder optimize fig1-cup-optimize --from sweep/fig1-cup": (
         "partfeeder optimize fig1-cup-short.yaml --from sweep/fig1-cup --out optimize/fig1-cup",
-        "~1 min, no budget flag: the shipped config with 16 evaluations, 10 final trials",
+        "~6 min, no budget flag: the shipped config with 16 evaluations, 10 final trials",
     ),
     "partfeeder bench --part": (
         "partfeeder bench --part 5",
