@@ -39,6 +39,8 @@ from feeders.feeder import DEFAULT_FRICTION, DegenerateDesign
 from feeders.feeder_family import Family, FeederFamily
 from feeders.part import DEFAULT_PEG, Peg
 
+Numbers = Sequence[float] | np.ndarray  # a parameter vector or box: a list or an array
+
 FRESH_DROPS = 40  # trials per design: 40 of 40 has a Wilson lower bound of 0.912 > 0.9
 FRESH_TAG = 0xC0DE  # mixed into the fresh seed so that it is no verdict's seed
 
@@ -193,10 +195,10 @@ def parameter_differences(
 
 def box_differences(
     names: Sequence[str],
-    design: Sequence[float],
-    baseline: Sequence[float],
-    low: Sequence[float],
-    high: Sequence[float],
+    design: Numbers,
+    baseline: Numbers,
+    low: Numbers,
+    high: Numbers,
 ) -> list[dict[str, Any]]:
     """Per parameter (order of ``names``): ``name``, ``design``, ``baseline``,
     ``difference`` (design - baseline, the parameter's unit), ``fraction`` (the difference
