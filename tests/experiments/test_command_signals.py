@@ -70,8 +70,11 @@ def _command(job: str, tmp_path: Path) -> list[str]:
     return [sys.executable, "-c", CLI, "stress", "--cases", "100000", "--workers", "2"]
 
 
-def _start(command: list[str]) -> subprocess.Popen:
-    """The command in a session of its own, once its workers have been working a while."""
+def _start(command: list[str], database: Path | None = None) -> subprocess.Popen:
+    """The command in a session of its own, once its workers have been working a while and,
+    given its ``database``, once it has stored something there (a count, not a time: on a
+    slow machine 3 s of the optimiser's workers' CPU went by before its first evaluation was
+    stored, and the resume check had nothing to check)."""
     process = subprocess.Popen(
         [*command, "--quiet"] if "optimize" in command else command,
         cwd=ROOT,
@@ -84,7 +87,8 @@ def _start(command: list[str]) -> subprocess.Popen:
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline:
         assert process.poll() is None, "it ended before it could be signalled"
-        if sum(_cpu_s(p) for p in children_of(process.pid)) >= WORKER_CPU_S:
+        working = sum(_cpu_s(p) for p in children_of(process.pid)) >= WORKER_CPU_S
+        if working and (database is None or _stored(database)):
             return process
         time.sleep(0.1)
     process.kill()
@@ -100,7 +104,8 @@ def test_a_signal_stops_the_command_cleanly_and_leaves_no_process(
 ) -> None:
     sig, to_group = SIGNALS[how]
     command = _command(job, tmp_path)
-    process = _start(command)
+    database = tmp_path / "out" / "evaluations.sqlite" if job == "optimize" else None
+    process = _start(command, database)
     children = children_of(process.pid)
     try:
         if to_group:
@@ -118,7 +123,7 @@ def test_a_signal_stops_the_command_cleanly_and_leaves_no_process(
     assert process.returncode == 130, err
     assert err.count("\n") == 1 and "interrupted" in err, err
     if job == "optimize":
-        database = tmp_path / "out" / "evaluations.sqlite"
+        assert database is not None
         before = _stored(database)
         assert before, "nothing was stored before the signal"
         again = subprocess.run([*command, "--quiet"], cwd=ROOT, capture_output=True, text=True)
