@@ -16,7 +16,7 @@ monitor, numba's pool) can deadlock the child.
 from __future__ import annotations
 
 import functools
-import multiprocessing
+import os
 import signal
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
@@ -24,7 +24,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
-from experiments.executors.worker import start_worker
+from experiments.executors.worker import start_worker, worker_context
 
 Job = Any  # plain data: a worker builds everything else (its OMPL objects, its scenes)
 Evaluate = Callable[[Job], Any]
@@ -47,10 +47,10 @@ def error_text(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
-def _start(ompl: bool, warm_up: WarmUp | None) -> None:
+def _start(parent: int, ompl: bool, warm_up: WarmUp | None) -> None:
     """A pool process's initializer: :func:`start_worker`, then ``warm_up`` (for example,
     load the kernels a job's timing must not count)."""
-    start_worker(ompl)
+    start_worker(parent, ompl)
     if warm_up is not None:
         warm_up()
 
@@ -66,7 +66,7 @@ def _alone(evaluate: Evaluate, job: Job, conn, start: Callable[[], None]) -> Non
 
 def _run_alone(evaluate: Evaluate, job: Job, start: Callable[[], None]) -> tuple[str, Any]:
     """Run one job in a fresh process: ('ok', result), ('error', message) or ('died', why)."""
-    context = multiprocessing.get_context("spawn")
+    context = worker_context()
     receive, send = context.Pipe(duplex=False)
     process = context.Process(target=_alone, args=(evaluate, job, send, start), daemon=True)
     process.start()
@@ -99,8 +99,8 @@ class LocalPool:
     ):
         self.workers = workers
         self.max_attempts = max_attempts
-        self._start = functools.partial(_start, ompl, warm_up)
-        self._context = multiprocessing.get_context("spawn")
+        self._start = functools.partial(_start, os.getpid(), ompl, warm_up)
+        self._context = worker_context()
         self._pool: ProcessPoolExecutor | None = None
 
     def __enter__(self) -> LocalPool:

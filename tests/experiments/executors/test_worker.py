@@ -17,10 +17,9 @@ pytestmark = pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the pr
 PARENT = """
 import os, sys, time
 from concurrent.futures import ProcessPoolExecutor
-import multiprocessing
-from experiments.executors.worker import start_worker
-pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"),
-                           initializer=start_worker, initargs=(False,))
+from experiments.executors.worker import start_worker, worker_context
+pool = ProcessPoolExecutor(1, mp_context=worker_context(),
+                           initializer=start_worker, initargs=(os.getpid(), False))
 print(pool.submit(os.getpid).result(), flush=True)
 for _ in sys.stdin:  # each line asks the worker who it is again (it must still be there)
     print(pool.submit(os.getpid).result(), flush=True)
@@ -88,3 +87,50 @@ def test_a_worker_ignores_ctrl_c_which_is_its_parents_to_handle() -> None:
         os.killpg(parent.pid, signal.SIGKILL)
         parent.wait()
         wait_gone(worker)
+
+
+BLOCKED_AT_BIRTH = """
+import os
+from experiments.executors.worker import worker_context
+
+def sigint_blocked_here():
+    with open("/proc/self/status") as f:
+        mask = next(line for line in f if line.startswith("SigBlk:")).split()[1]
+    return bool(int(mask, 16) >> 1 & 1)  # SIGINT is signal 2: bit 1
+
+if __name__ == "__main__":
+    context = worker_context()
+    with context.Pool(1) as pool:
+        print(pool.apply(sigint_blocked_here), flush=True)
+"""
+
+
+def test_a_worker_is_born_with_ctrl_c_held_pending(tmp_path) -> None:
+    """Before any start-up of ours runs (while it imports numpy and scipy), a worker holds
+    SIGINT pending, so a Ctrl-C then is no KeyboardInterrupt traceback (reference: the
+    kernel's SigBlk mask in /proc)."""
+    script = tmp_path / "born.py"
+    script.write_text(BLOCKED_AT_BIRTH)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "True"
+
+
+ORPHAN = """
+import sys
+from experiments.executors.worker import start_worker
+start_worker(int(sys.argv[1]), False)  # a parent that is not this process's
+print("not ended", flush=True)
+"""
+
+
+def test_a_worker_whose_parent_died_while_it_started_ends_at_once() -> None:
+    """The parent's pid is the one it had when it started the worker: a worker re-parented
+    before its start-up ran ends there, and does nothing else."""
+    gone = subprocess.Popen([sys.executable, "-c", "pass"])
+    gone.wait()  # the parent that started it, now dead
+    done = subprocess.run(
+        [sys.executable, "-c", ORPHAN, str(gone.pid)], capture_output=True, text=True
+    )
+    assert done.returncode == 1
+    assert "not ended" not in done.stdout
