@@ -353,25 +353,31 @@ def guess_basis(
 
 
 @njit(cache=True)
-def _solve_guess(M: np.ndarray, q: np.ndarray, guess: np.ndarray, trial: np.ndarray) -> bool:
+def _solve_guess(
+    M: np.ndarray,
+    q: np.ndarray,
+    guess: np.ndarray,
+    trial: np.ndarray,
+    idx: np.ndarray,
+    a: np.ndarray,
+    pivot_col: np.ndarray,
+) -> bool:
     """Solve ``M_SS z_S = -q_S`` for S = {i: guess[i]} into ``trial`` (zero off S), Gaussian
     elimination with partial pivoting in one pass. A column without a pivot (M_SS singular)
     leaves S (``guess[i]`` is cleared): its z_i is 0 and the rows left over are not solved for
-    (the caller verifies the result). Returns whether a column left."""
+    (the caller verifies the result). Returns whether a column left. ``idx``, ``a`` (at least
+    n x (n + 1)) and ``pivot_col`` are scratch."""
     n = M.shape[0]
-    idx = np.empty(n, dtype=np.int64)
     m = 0
     for i in range(n):
         trial[i] = 0.0
         if guess[i]:
             idx[m] = i
             m += 1
-    a = np.empty((m, m + 1))
     for r in range(m):
         for c in range(m):
             a[r, c] = M[idx[r], idx[c]]
         a[r, m] = -q[idx[r]]
-    pivot_col = np.empty(m, dtype=np.int64)
     rows = 0
     for c in range(m):
         p = rows
@@ -420,18 +426,47 @@ def solve_from_basis(
     accepted. Returns the residual when accepted (and writes z), inf otherwise (z untouched).
     """
     n = M.shape[0]
-    trial = np.empty(n)
-    guess = np.empty(n, dtype=np.bool_)
+    return solve_from_basis_in(
+        M,
+        q,
+        basic,
+        degenerate,
+        z,
+        np.empty(n),
+        np.empty(n, dtype=np.bool_),
+        np.empty(n, dtype=np.int64),
+        np.empty((n, n + 1)),
+        np.empty(n, dtype=np.int64),
+    )
+
+
+@njit(cache=True)
+def solve_from_basis_in(
+    M: np.ndarray,
+    q: np.ndarray,
+    basic: np.ndarray,
+    degenerate: np.ndarray,
+    z: np.ndarray,
+    trial: np.ndarray,
+    guess: np.ndarray,
+    idx: np.ndarray,
+    a: np.ndarray,
+    pivot_col: np.ndarray,
+) -> float:
+    """:func:`solve_from_basis` in the caller's scratch (``trial``, ``guess``, ``idx`` and
+    ``pivot_col`` of at least n, ``a`` of at least n x (n + 1)): a time stepper's warm start,
+    which runs on most contact steps of a drop, allocates nothing."""
+    n = M.shape[0]
     scale = 1.0
     for i in range(n):
         scale = max(scale, 1.0 + abs(q[i]))
         guess[i] = basic[i]
-    singular = _solve_guess(M, q, guess, trial)
+    singular = _solve_guess(M, q, guess, trial, idx, a, pivot_col)
     res = lcp_residual(M, q, trial)
     if not res <= TOL * scale and singular:
         for i in range(n):
             guess[i] = basic[i] or degenerate[i]
-        _solve_guess(M, q, guess, trial)
+        _solve_guess(M, q, guess, trial, idx, a, pivot_col)
         res = lcp_residual(M, q, trial)
     if not res <= TOL * scale:
         return np.inf

@@ -59,7 +59,13 @@ from validity.contact_lcp import (
     solve_with_fallback,
 )
 from validity.geometry_kernel import part_radius, place_part, pose_vertices
-from validity.lcp import LCP_REGULARISED, LCP_SOLVED, guess_basis, solve_from_basis, solve_lcp
+from validity.lcp import (
+    LCP_REGULARISED,
+    LCP_SOLVED,
+    guess_basis,
+    solve_from_basis_in,
+    solve_lcp,
+)
 
 # Per-step telemetry columns.
 T_CONTACTS, T_STATUS, T_PIVOTS, T_ALPHA, T_RESIDUAL, T_PENETRATION, T_SIZE = range(7)
@@ -247,6 +253,11 @@ def simulate_kernel(
     basic = np.zeros(nmax, dtype=np.bool_)  # the last solved LCP's basis: z_i > 0
     degen = np.zeros(nmax, dtype=np.bool_)  # and its degenerate pairs: z_i = w_i = 0
     basic_size = -1
+    trial = np.empty(nmax)  # the warm start's scratch
+    guess = np.empty(nmax, dtype=np.bool_)
+    idx = np.empty(nmax, dtype=np.int64)
+    elim = np.empty((nmax, nmax + 1))
+    pivot_col = np.empty(nmax, dtype=np.int64)
     vstar = np.empty(3)
     v = np.empty(3)
     dq = np.empty(3)
@@ -320,8 +331,17 @@ def simulate_kernel(
                 summary[S_LCPS] += 1
                 warm = False
                 if warm_start and size == basic_size:
-                    residual = solve_from_basis(
-                        B[:size, :size], b[:size], basic[:size], degen[:size], z[:size]
+                    residual = solve_from_basis_in(
+                        B[:size, :size],
+                        b[:size],
+                        basic[:size],
+                        degen[:size],
+                        z[:size],
+                        trial,
+                        guess,
+                        idx,
+                        elim,
+                        pivot_col,
                     )
                     warm = residual < np.inf
                 if warm:
