@@ -55,6 +55,7 @@ import numpy as np
 from numba import njit
 
 from validity.geometry_kernel import _box_gap, _box_of, _edge_normal, polygon_aabbs
+from validity.leaf_kernel import leaf_kernel
 
 MAX_CONTACTS = 12  # a planar convex part touches at most a few features; deeper ones are kept
 _TINY = 1e-14
@@ -63,7 +64,7 @@ _SEAM_PROBE = 1e-7  # how far past a vertex (length) the solid is probed for a f
 FEATURE_SLOP = 1e-6  # depth (length) below which two features of a pair are not told apart
 
 
-@njit(cache=True)
+@leaf_kernel
 def _contains(b: np.ndarray, nb: int, px: float, py: float) -> bool:
     """p inside or on the convex CCW polygon b[:nb]."""
     for i in range(nb):
@@ -73,7 +74,7 @@ def _contains(b: np.ndarray, nb: int, px: float, py: float) -> bool:
     return True
 
 
-@njit(cache=True)
+@leaf_kernel
 def point_polygon_feature(
     px: float,
     py: float,
@@ -143,7 +144,7 @@ def point_polygon_feature(
     return best, in_nx, in_ny, cx, cy, vertex, hidden, in_i  # on the boundary: the edge's normal
 
 
-@njit(cache=True)
+@leaf_kernel
 def _add(contacts: np.ndarray, nc: int, gap, nx, ny, px, py) -> int:
     """Append a row (gap, nx, ny, px, py); when full, it replaces the row with the largest gap."""
     k = nc
@@ -159,7 +160,7 @@ def _add(contacts: np.ndarray, nc: int, gap, nx, ny, px, py) -> int:
     return max(nc, k + 1)
 
 
-@njit(cache=True)
+@leaf_kernel
 def _solid(verts: np.ndarray, counts: np.ndarray, px: float, py: float) -> bool:
     for q in range(verts.shape[0]):
         if _contains(verts[q], counts[q], px, py):
@@ -201,7 +202,7 @@ def corner_vertices(verts: np.ndarray, counts: np.ndarray, surface: np.ndarray) 
     return out
 
 
-@njit(cache=True)
+@leaf_kernel
 def _strictly_inside(verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, px, py) -> bool:
     """p strictly inside (by more than round-off) one of the polygons."""
     for q in range(verts.shape[0]):  # indexed, not sliced: a view per piece costs more here
@@ -221,7 +222,7 @@ def _strictly_inside(verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, p
     return False
 
 
-@njit(cache=True)
+@leaf_kernel
 def solid_depth(
     px: float,
     py: float,
@@ -280,7 +281,7 @@ def solid_depth(
     return best, nx, ny
 
 
-@njit(cache=True)
+@leaf_kernel
 def _in_other_disc(circles: np.ndarray, skip: int, px: float, py: float) -> bool:
     for q in range(circles.shape[0]):
         if q != skip and math.hypot(px - circles[q, 0], py - circles[q, 1]) < circles[q, 2] - _TINY:
@@ -288,7 +289,7 @@ def _in_other_disc(circles: np.ndarray, skip: int, px: float, py: float) -> bool
     return False
 
 
-@njit(cache=True)
+@leaf_kernel
 def _run_end(a: np.ndarray, na: int, edge: int, step: int) -> int:
     """The vertex where the straight run of edges through ``edge`` ends, going forward
     (``step`` 1: the run's last vertex) or back (-1: its first): a split edge's collinear
@@ -307,7 +308,7 @@ def _run_end(a: np.ndarray, na: int, edge: int, step: int) -> int:
     return (i + 1) % na if step == 1 else i
 
 
-@njit(cache=True)
+@leaf_kernel
 def _reaches_behind(a: np.ndarray, na: int, c: np.ndarray, nc: int, depth: float) -> bool:
     """Whether, along every edge normal of the convex polygon a[:na], some vertex of c[:nc]
     lies at least ``depth`` (>= 0) behind the edge's line. Stops an axis at the first such
@@ -329,7 +330,7 @@ def _reaches_behind(a: np.ndarray, na: int, c: np.ndarray, nc: int, depth: float
     return True
 
 
-@njit(cache=True)
+@leaf_kernel
 def _overlap_below(world, n, b, nb, depth) -> bool:
     """Whether the part and the convex piece b[:nb] overlap by less than ``depth`` (length) in
     the separating-axis sense: along some edge normal of either shape the other reaches less
@@ -337,7 +338,7 @@ def _overlap_below(world, n, b, nb, depth) -> bool:
     return not (_reaches_behind(world, n, b, nb, depth) and _reaches_behind(b, nb, world, n, depth))
 
 
-@njit(cache=True)
+@leaf_kernel
 def _keeps(
     a: np.ndarray,
     na: int,
@@ -388,7 +389,7 @@ def _keeps(
     return vertex_pairs and apart
 
 
-@njit(cache=True)
+@leaf_kernel
 def _depth_in(b: np.ndarray, nb: int, px: float, py: float) -> float:
     """Signed distance of p to the edge lines of the convex polygon b[:nb] (the largest one):
     negative inside, minus p's depth in b."""
@@ -400,7 +401,7 @@ def _depth_in(b: np.ndarray, nb: int, px: float, py: float) -> float:
     return out
 
 
-@njit(cache=True)
+@leaf_kernel
 def _add_axis_contact(world, n, b, nb, part_surface, surface, contacts, nc) -> int:
     """The contact of an overlap deeper than any vertex of either shape lies inside the other
     (two corners passed each other, or the part straddles a thin piece): along the
@@ -438,7 +439,7 @@ def _add_axis_contact(world, n, b, nb, part_surface, surface, contacts, nc) -> i
     return _add(contacts, nc, best, -nx, -ny, b[k, 0] - low * nx, b[k, 1] - low * ny)
 
 
-@njit(cache=True)
+@leaf_kernel
 def find_contacts(
     world: np.ndarray,
     verts: np.ndarray,
@@ -489,13 +490,14 @@ def find_contacts(
             clear = min(clear, gap)
             continue
         b, nb = verts[p], counts[p]
+        b_surface, b_corners = surface[p], corners[p]  # one view each, not one per vertex
         explained = 0.0  # the deepest a vertex of either shape lies inside the other
         nearest = np.inf
         for k in range(n):
             if buried >> k & 1:
                 continue
             d, nx, ny, cx, cy, at_vertex, hidden, edge = point_polygon_feature(
-                world[k, 0], world[k, 1], b, nb, margin, surface[p], corners[p]
+                world[k, 0], world[k, 1], b, nb, margin, b_surface, b_corners
             )
             nearest = min(nearest, d)
             explained = max(explained, -d)
@@ -510,7 +512,7 @@ def find_contacts(
             ):
                 nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
         for j in range(nb):
-            if not corners[p, j]:
+            if not b_corners[j]:
                 continue
             d, nx, ny, cx, cy, at_vertex, hidden, edge = point_polygon_feature(
                 b[j, 0], b[j, 1], world, n, margin, part_surface, part_corners
@@ -529,7 +531,7 @@ def find_contacts(
                 if buried >> k & 1:
                     explained = max(explained, -_depth_in(b, nb, world[k, 0], world[k, 1]))
             if not _overlap_below(world, n, b, nb, explained + FEATURE_SLOP):
-                nc = _add_axis_contact(world, n, b, nb, part_surface, surface[p], contacts, nc)
+                nc = _add_axis_contact(world, n, b, nb, part_surface, b_surface, contacts, nc)
         clear = min(clear, nearest)  # below the margin too when a candidate was not kept
     for q in range(circles.shape[0]):
         ox, oy, r = circles[q, 0], circles[q, 1], circles[q, 2]
@@ -550,7 +552,7 @@ def find_contacts(
     return nc, clear
 
 
-@njit(cache=True)
+@leaf_kernel
 def plain_part(
     bcounts: np.ndarray, bsurface: np.ndarray, bcorners: np.ndarray, bdiscs: np.ndarray
 ) -> bool:
@@ -566,7 +568,7 @@ def plain_part(
     return True
 
 
-@njit(cache=True)
+@leaf_kernel
 def _disc_contacts(
     k: int,
     wdiscs: np.ndarray,
@@ -628,7 +630,7 @@ def _disc_contacts(
     return nc, clear
 
 
-@njit(cache=True)
+@njit(cache=True)  # polygon_aabbs allocates
 def find_part_contacts(
     world: np.ndarray,
     wcounts: np.ndarray,

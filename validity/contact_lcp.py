@@ -21,12 +21,13 @@ import numpy as np
 from numba import njit
 
 from validity.lcp import LCP_REGULARISED, LCP_SOLVED, solve_lcp
+from validity.leaf_kernel import leaf_kernel
 
 FALLBACK_FRICTIONLESS = 10  # status: the friction LCP failed, the frictionless one held
 FAILED = 11  # status: no LCP could be solved; no contact impulse
 
 
-@njit(cache=True)
+@leaf_kernel
 def contact_jacobians(
     contacts: np.ndarray, nc: int, x: float, y: float, wn: np.ndarray, wt: np.ndarray
 ) -> None:
@@ -40,7 +41,7 @@ def contact_jacobians(
         wt[0, i], wt[1, i], wt[2, i] = tx, ty, rx * ty - ry * tx
 
 
-@njit(cache=True)
+@leaf_kernel
 def lcp_columns(wn: np.ndarray, wt: np.ndarray, nc: int, frictional: bool, cols: np.ndarray) -> int:
     """[W_n | W_f] into ``cols (3, >= 3 nc)``, W_f = (+t_i, -t_i) per contact; W_n alone when
     frictionless. Returns the number of columns m."""
@@ -53,7 +54,7 @@ def lcp_columns(wn: np.ndarray, wt: np.ndarray, nc: int, frictional: bool, cols:
     return 3 * nc if frictional else nc
 
 
-@njit(cache=True)
+@leaf_kernel
 def assemble_lcp(
     cols: np.ndarray,
     m: int,
@@ -91,7 +92,7 @@ def assemble_lcp(
     return n
 
 
-@njit(cache=True)
+@leaf_kernel
 def apply_lcp_impulse(
     cols: np.ndarray, m: int, z: np.ndarray, minv: np.ndarray, v: np.ndarray
 ) -> None:

@@ -17,10 +17,12 @@ import math
 import numpy as np
 from numba import njit
 
+from validity.leaf_kernel import leaf_kernel
+
 _EDGE_EPS = 1e-14
 
 
-@njit(cache=True)
+@leaf_kernel
 def pose_vertices(body: np.ndarray, x: float, y: float, yaw: float, out: np.ndarray) -> None:
     """Write the world corners of a body polygon (body frame ``(n, 2)``) at pose into ``out``."""
     c, s = math.cos(yaw), math.sin(yaw)
@@ -30,7 +32,7 @@ def pose_vertices(body: np.ndarray, x: float, y: float, yaw: float, out: np.ndar
         out[i, 1] = y + s * bx + c * by
 
 
-@njit(cache=True)
+@leaf_kernel
 def point_segment_distance(
     px: float, py: float, ax: float, ay: float, bx: float, by: float
 ) -> float:
@@ -45,7 +47,7 @@ def point_segment_distance(
     return math.sqrt(dx * dx + dy * dy)
 
 
-@njit(cache=True)
+@leaf_kernel
 def _edge_normal(a: np.ndarray, i: int, na: int) -> tuple[float, float, bool]:
     """Unit outward normal of edge i of CCW polygon a[:na]; False for a zero-length edge."""
     j = (i + 1) % na
@@ -56,7 +58,7 @@ def _edge_normal(a: np.ndarray, i: int, na: int) -> tuple[float, float, bool]:
     return ey / ll, -ex / ll, True
 
 
-@njit(cache=True)
+@leaf_kernel
 def _box_of(world: np.ndarray) -> tuple[float, float, float, float]:
     """(xmin, ymin, xmax, ymax) of points ``(n, 2)``."""
     x0, y0 = world[0, 0], world[0, 1]
@@ -67,7 +69,7 @@ def _box_of(world: np.ndarray) -> tuple[float, float, float, float]:
     return x0, y0, x1, y1
 
 
-@njit(cache=True)
+@leaf_kernel
 def _max_separation(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
     """Largest separation of b from a's edge lines (outward normals of CCW a)."""
     best = -np.inf
@@ -83,7 +85,7 @@ def _max_separation(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
     return best
 
 
-@njit(cache=True)
+@leaf_kernel
 def _vertex_edge_distance(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
     """Smallest distance from a vertex of a to an edge of b."""
     best = np.inf
@@ -95,7 +97,7 @@ def _vertex_edge_distance(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> flo
     return best
 
 
-@njit(cache=True)
+@leaf_kernel
 def convex_signed_distance(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> float:
     """Signed distance between convex CCW polygons a[:na] and b[:nb]."""
     sep = max(_max_separation(a, na, b, nb), _max_separation(b, nb, a, na))
@@ -104,7 +106,7 @@ def convex_signed_distance(a: np.ndarray, na: int, b: np.ndarray, nb: int) -> fl
     return min(_vertex_edge_distance(a, na, b, nb), _vertex_edge_distance(b, nb, a, na))
 
 
-@njit(cache=True)
+@leaf_kernel
 def circle_signed_distance(cx: float, cy: float, r: float, b: np.ndarray, nb: int) -> float:
     """Signed distance between the disc (c, r) and the convex CCW polygon b[:nb]."""
     inside = -np.inf
@@ -136,7 +138,7 @@ def polygon_aabbs(verts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     return out
 
 
-@njit(cache=True)
+@leaf_kernel
 def _box_gap(a0: float, a1: float, a2: float, a3: float, b: np.ndarray) -> float:
     """Distance between two axis-aligned boxes (0 when they overlap)."""
     dx = max(b[0] - a2, 0.0, a0 - b[2])
@@ -144,7 +146,7 @@ def _box_gap(a0: float, a1: float, a2: float, a3: float, b: np.ndarray) -> float
     return math.sqrt(dx * dx + dy * dy)
 
 
-@njit(cache=True)
+@leaf_kernel
 def clearance_at(
     world: np.ndarray,
     verts: np.ndarray,
@@ -204,7 +206,7 @@ def clearance_at_pose(
     return clearance_at(world, verts, counts, aabbs, circles, stop_below)
 
 
-@njit(cache=True)
+@leaf_kernel
 def penetrates(
     world: np.ndarray, verts: np.ndarray, counts: np.ndarray, aabbs: np.ndarray, circles: np.ndarray
 ) -> bool:
@@ -233,7 +235,7 @@ def penetrates(
     return False
 
 
-@njit(cache=True)
+@leaf_kernel
 def penetrates_deeper_than(
     world: np.ndarray,
     verts: np.ndarray,
@@ -273,7 +275,7 @@ def penetrates_deeper_than(
     return False
 
 
-@njit(cache=True)
+@leaf_kernel
 def place_part(
     body: np.ndarray,
     bcounts: np.ndarray,
@@ -299,7 +301,7 @@ def place_part(
         wdiscs[k, 2] = bdiscs[k, 2]
 
 
-@njit(cache=True)
+@leaf_kernel
 def part_radius(body: np.ndarray, bcounts: np.ndarray, bdiscs: np.ndarray) -> float:
     """Largest distance from the centre of mass (the body frame's origin) to a point of the
     part: how far a turn of one radian moves any point of it."""
@@ -312,7 +314,7 @@ def part_radius(body: np.ndarray, bcounts: np.ndarray, bdiscs: np.ndarray) -> fl
     return radius
 
 
-@njit(cache=True)
+@leaf_kernel
 def _disc_clearance(cx, cy, r, verts, counts, aabbs, circles, best, stop_below) -> float:
     """``min(best, signed distance of the disc (c, r) to every obstacle)``, stopping below
     ``stop_below``."""
@@ -334,7 +336,7 @@ def _disc_clearance(cx, cy, r, verts, counts, aabbs, circles, best, stop_below) 
     return best
 
 
-@njit(cache=True)
+@leaf_kernel
 def part_clearance(
     world: np.ndarray,
     wcounts: np.ndarray,
@@ -385,7 +387,7 @@ def part_clearance_at_pose(
     return part_clearance(world, bcounts, wdiscs, verts, counts, aabbs, circles, stop_below)
 
 
-@njit(cache=True)
+@leaf_kernel
 def part_penetrates_deeper_than(
     world: np.ndarray,
     wcounts: np.ndarray,
@@ -423,7 +425,7 @@ def part_penetrates_deeper_than(
     return False
 
 
-@njit(cache=True)
+@leaf_kernel
 def part_penetrates(world, wcounts, wdiscs, verts, counts, aabbs, circles) -> bool:
     """:func:`penetrates` for a placed part of convex pieces and discs (psi_n < 0 anywhere)."""
     if world.shape[0] == 1 and wdiscs.shape[0] == 0 and wcounts[0] == world.shape[1]:

@@ -44,6 +44,8 @@ import math
 import numpy as np
 from numba import njit
 
+from validity.leaf_kernel import leaf_kernel
+
 LCP_SOLVED = 0  # solved by Lemke on the original problem
 LCP_REGULARISED = 1  # solved after one or more regularisation retries
 LCP_RAY = 2  # secondary ray termination (unrecovered)
@@ -63,7 +65,7 @@ _TIE_TOL = 1e-9  # ratios within this (relative) of the minimum are ties
 _Z0_TOL = 1e-12  # z0 below this times max|q| is zero: the basis is then complementary
 
 
-@njit(cache=True)
+@leaf_kernel
 def _column(M: np.ndarray, alpha: float, binv: np.ndarray, var: int, col: np.ndarray) -> None:
     """``B^-1`` times the tableau column of ``w_var`` (var < n) or ``z_{var-n}``."""
     n = M.shape[0]
@@ -79,7 +81,7 @@ def _column(M: np.ndarray, alpha: float, binv: np.ndarray, var: int, col: np.nda
         col[i] = -acc
 
 
-@njit(cache=True)
+@leaf_kernel
 def _leaving_row(
     x: np.ndarray,
     binv: np.ndarray,
@@ -129,7 +131,7 @@ def _leaving_row(
     return cand[0]
 
 
-@njit(cache=True)
+@leaf_kernel
 def _pivot(x: np.ndarray, binv: np.ndarray, col: np.ndarray, r: int) -> None:
     n = x.shape[0]
     p = col[r]
@@ -144,7 +146,7 @@ def _pivot(x: np.ndarray, binv: np.ndarray, col: np.ndarray, r: int) -> None:
                 binv[i, k] -= f * binv[r, k]
 
 
-@njit(cache=True)
+@leaf_kernel
 def _refine(
     M: np.ndarray,
     q: np.ndarray,
@@ -253,7 +255,7 @@ def lemke(M: np.ndarray, q: np.ndarray, z: np.ndarray, max_pivots: int) -> tuple
     return _lemke(M, q, 0.0, z, max_pivots)
 
 
-@njit(cache=True)
+@leaf_kernel
 def lcp_residual(M: np.ndarray, q: np.ndarray, z: np.ndarray) -> float:
     """``max(max_i |min(z_i, w_i)|, -min z, -min w, 0)`` with ``w = M z + q``."""
     n = M.shape[0]
@@ -268,7 +270,7 @@ def lcp_residual(M: np.ndarray, q: np.ndarray, z: np.ndarray) -> float:
     return res
 
 
-@njit(cache=True)
+@leaf_kernel
 def _finite(a: np.ndarray) -> bool:
     for v in a.flat:
         if not math.isfinite(v):
@@ -331,7 +333,7 @@ def solve_lcp(M: np.ndarray, q: np.ndarray, z: np.ndarray) -> tuple[int, int, fl
     return first_status, total, alpha, best_res
 
 
-@njit(cache=True)
+@leaf_kernel
 def guess_basis(
     M: np.ndarray, q: np.ndarray, z: np.ndarray, basic: np.ndarray, degenerate: np.ndarray
 ) -> None:
@@ -352,7 +354,7 @@ def guess_basis(
             degenerate[i] = abs(w) <= TOL * scale
 
 
-@njit(cache=True)
+@leaf_kernel
 def _solve_guess(
     M: np.ndarray,
     q: np.ndarray,
@@ -440,7 +442,7 @@ def solve_from_basis(
     )
 
 
-@njit(cache=True)
+@leaf_kernel
 def solve_from_basis_in(
     M: np.ndarray,
     q: np.ndarray,
