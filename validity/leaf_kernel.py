@@ -12,8 +12,10 @@ decorator can only be put where it is safe.
 
 from __future__ import annotations
 
+from typing import Any, cast
+
 from numba import njit
 
-leaf_kernel = njit(cache=True, _nrt=False)
+leaf_kernel = cast(Any, njit)(cache=True, _nrt=False)  # _nrt: numba's, not in its type stubs
 """``@leaf_kernel`` on a compiled function that allocates no array (and calls none that
 does): the same code as ``@njit(cache=True)``, without reference counting."""
