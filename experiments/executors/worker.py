@@ -11,7 +11,7 @@ leaves interrupts to it.
   within ``PARENT_POLL_S``: a daemon thread watches the parent's pid (the worker is
   re-parented when its parent dies), portable where Linux's parent-death signal is not, and
   not tied to the thread that started the worker. The parent's pid is the one it had when
-  it started the worker, so a parent killed while the worker still imported is missed too.
+  it started the worker, so a parent killed while the worker still imported is noticed too.
 
 Dask's workers are not ours to manage (``distributed`` ends them); only their OMPL log is
 silenced (:func:`quiet_ompl`).
