@@ -28,3 +28,18 @@ def wilson_interval(successes: int, trials: int, z: float = Z95) -> tuple[float,
     centre = (p + z2 / (2 * trials)) / denominator
     half = z / denominator * math.sqrt(p * (1 - p) / trials + z2 / (4 * trials * trials))
     return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def paired_exact_p(only_first: int, only_second: int) -> float:
+    """One-sided exact McNemar test on paired trials (the same draws): the probability, if
+    the two were equally reliable, of the first succeeding alone on at least ``only_first``
+    of the ``only_first + only_second`` discordant draws, P(Binomial(n, 1/2) >= k).
+
+    McNemar (1947), "Note on the sampling error of the difference between correlated
+    proportions or percentages", Psychometrika 12(2):153-157; the exact (binomial) form is
+    the one for few discordant pairs. No discordant draw: 1.0 (no evidence either way).
+    """
+    if only_first < 0 or only_second < 0:
+        raise ValueError(f"need counts >= 0, got {only_first} and {only_second}")
+    n = only_first + only_second
+    return sum(math.comb(n, i) for i in range(only_first, n + 1)) / 2.0**n

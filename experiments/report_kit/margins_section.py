@@ -16,11 +16,11 @@ import math
 from pathlib import Path
 from typing import Any
 
+from experiments.margins.robustness import SIDES, at_edge, room
 from experiments.report_kit.cells import DASH, cell
 from experiments.report_kit.page import figure_html, html_table
 
 MARGINS = "margins"
-SIDES = ("low", "high")
 TIGHTEST = 3  # axes named in the one-line summary
 
 
@@ -32,25 +32,6 @@ def margins_figures(margins: dict[str, Any] | None, figures_dir: Path) -> dict[s
     from experiments.margins.figure import margins_chart
 
     return {MARGINS: margins_chart(margins, figures_dir / f"{MARGINS}.png")}
-
-
-def room(row: dict[str, Any]) -> tuple[float, float] | None:
-    """The room below and above the nominal of one margins row, as fractions of its box's
-    width (``(0.0, 0.0)`` is no room at all); None when the row has no margin."""
-    interval = row.get("interval")
-    if interval is None:
-        return None
-    low, high = row["box"]
-    width = float(high - low) or 1.0
-    nominal = float(row["nominal"])
-    return (nominal - float(interval[0])) / width, (float(interval[1]) - nominal) / width
-
-
-def at_edge(row: dict[str, Any], side: str) -> bool:
-    """Whether the margin's ``side`` ("low" or "high") end is the box's edge (its room is a
-    lower bound: the search stopped there)."""
-    end = row.get(side) or {}
-    return bool(end.get("at_box_edge"))
 
 
 def tightest(margins: dict[str, Any], count: int = TIGHTEST) -> list[dict[str, Any]]:
