@@ -177,7 +177,7 @@ def finish(
 
             say(
                 "writing the report (figures, the top designs judged again on fresh draws, "
-                "the recommended design's margins) ...",
+                "the margins of those confirmed and of the baseline) ...",
                 quiet,
             )
             t0 = time.perf_counter()
@@ -220,6 +220,12 @@ def recommendation_line(recommendation: dict[str, Any] | None) -> str | None:
     """The recommendation in one line of the printed summary (None without one)."""
     if not recommendation:
         return None
+    if recommendation.get("decision") == "keep the baseline":
+        return (
+            f"recommended: keep the baseline {recommendation['label']}: "
+            f"{recommendation.get('why')}; {recommendation['sentence']}"
+        )
     if recommendation.get("confirmed"):
-        return f"recommended: {recommendation['label']}, {recommendation['sentence']}"
+        why = f" ({recommendation['why']})" if recommendation.get("why") else ""
+        return f"recommended: {recommendation['label']}{why}, {recommendation['sentence']}"
     return f"recommended: none, {recommendation.get('sentence')}"

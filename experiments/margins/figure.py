@@ -16,6 +16,7 @@ import matplotlib.pyplot as plt
 
 INSIDE = "#2b8cbe"  # the allowed interval
 NONE = "#d95f02"  # an axis with no margin (the nominal itself below the target)
+BASELINE = "#fdae6b"  # the baseline's allowed interval, beside the design's
 LABELS = {
     "a": "a  input chute width",
     "b": "b  exit chute width",
@@ -40,31 +41,48 @@ def _num(value: float) -> str:
     return f"{value:.3g}"
 
 
-def margins_chart(data: dict, path: Path) -> Path:
+def _bar(ax, row: dict, y: float, height: float, color: str, end_color: str) -> str:
+    """One design's allowed interval on an axis's row (box fractions), its ends found inside
+    the box marked, its nominal a diamond; returns the interval's text."""
+    lo, hi = row["box"]
+    span = hi - lo or 1.0
+    nominal = (row["nominal"] - lo) / span
+    unit = "" if row["unit"] in ("-", "share") else f" {row['unit']}"
+    if row["interval"] is None:
+        ax.text(0.5, y, "no margin: below target at nominal", ha="center", va="center",
+                color=NONE, fontsize=8)  # fmt: skip
+        note = "none"
+    else:
+        a, b = ((v - lo) / span for v in row["interval"])
+        ax.barh(y, max(b - a, 0.004), left=a, height=height, color=color)
+        note = f"[{_num(row['interval'][0])}, {_num(row['interval'][1])}]{unit}"
+        for side, x in (("low", a), ("high", b)):
+            if not row[side]["at_box_edge"]:
+                ax.plot([x, x], [y - 0.58 * height, y + 0.58 * height], color=end_color, lw=1.6)
+    ax.plot([nominal], [y], marker="D", color="black", markersize=4.5, zorder=3)
+    return note
+
+
+def margins_chart(data: dict, path: Path, baseline: dict | None = None) -> Path:
     """Draw the margins of :meth:`experiments.margins.run.MarginsReport.to_dict` into
-    ``path`` (PNG, 900 px wide)."""
+    ``path`` (PNG, 900 px wide); with ``baseline`` (another design's margins), each axis
+    shows both designs' intervals, the design's above the baseline's."""
     rows = data["margins"]
     n = len(rows)
-    fig, ax = plt.subplots(figsize=(9.0, 0.42 * n + 1.9), dpi=100)
+    theirs = {r["parameter"]: r for r in (baseline or {}).get("margins") or []}
+    per_row = 0.62 if baseline else 0.42
+    fig, ax = plt.subplots(figsize=(9.0, per_row * n + 2.1), dpi=100)
     for i, row in enumerate(rows):
         y = n - 1 - i
         lo, hi = row["box"]
-        span = hi - lo or 1.0
-        ax.barh(y, 1.0, left=0.0, height=0.62, color="#e6e6e6", edgecolor="#bdbdbd")
-        nominal = (row["nominal"] - lo) / span
-        unit = "" if row["unit"] in ("-", "share") else f" {row['unit']}"
-        if row["interval"] is None:
-            ax.text(0.5, y, "no margin: below target at nominal", ha="center", va="center",
-                    color=NONE, fontsize=9)  # fmt: skip
-            note = "none"
+        ax.barh(y, 1.0, left=0.0, height=0.8, color="#e6e6e6", edgecolor="#bdbdbd")
+        if baseline is None:
+            note = _bar(ax, row, y, 0.62, INSIDE, "#08306b")
         else:
-            a, b = ((v - lo) / span for v in row["interval"])
-            ax.barh(y, max(b - a, 0.004), left=a, height=0.62, color=INSIDE)
-            note = f"[{_num(row['interval'][0])}, {_num(row['interval'][1])}]{unit}"
-            for side, x in (("low", a), ("high", b)):
-                if not row[side]["at_box_edge"]:
-                    ax.plot([x, x], [y - 0.36, y + 0.36], color="#08306b", lw=1.6)
-        ax.plot([nominal], [y], marker="D", color="black", markersize=5, zorder=3)
+            note = _bar(ax, row, y + 0.19, 0.34, INSIDE, "#08306b")
+            other = theirs.get(row["parameter"])
+            if other is not None:
+                _bar(ax, other, y - 0.19, 0.34, BASELINE, "#7f2704")
         ax.text(1.03, y, note, va="center", fontsize=9)
         ax.text(1.36, y, f"[{_num(lo)}, {_num(hi)}]", va="center", fontsize=9, color="#636363")
     design_rows = sum(1 for r in rows if r["kind"] == "design")
@@ -87,15 +105,21 @@ def margins_chart(data: dict, path: Path) -> Path:
         if family
         else "Table 2's range for a ... α, a stated range for μ and the part"
     )
+    colours = (
+        f"blue: {data['design']}'s allowed interval, orange: {baseline['design']}'s"
+        if baseline
+        else "blue: allowed interval"
+    )
     ax.set_xlabel(
-        f"position in the box (grey bar): {boxes}\nblue: allowed interval;  ◆ nominal;  "
+        f"position in the box (grey bar): {boxes}\n{colours};  ◆ nominal;  "
         "| an end found inside the box (a full bar reaches the box's edges)",
         fontsize=9,
     )
     classes = (data.get("verdict") or {}).get("success_classes") or ["heavy end down"]
     success = " or ".join(classes)
     ax.set_title(
-        f"{data['design']}: tolerance margins, one parameter at a time (others nominal)\n"
+        f"{data['design']}{' beside ' + baseline['design'] if baseline else ''}: tolerance "
+        "margins, one parameter at a time (others nominal)\n"
         f"where P(both entries {success}) ≥ {data['target']:g} over "
         f"{data['drops_per_value']} perturbed drops per entry",
         fontsize=11,

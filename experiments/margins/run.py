@@ -8,7 +8,7 @@ verdict :func:`experiments.drop.family_verdict.family_verdict`)."""
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
 
 from experiments.drop.family_verdict import family_verdict
@@ -117,12 +117,12 @@ class MarginsReport:
         }
 
 
-def axes_of(subject: MarginSubject) -> tuple[Axis, ...]:
+def axes_of(subject: MarginSubject, kinds: Collection[str] | None = None) -> tuple[Axis, ...]:
     """The axes of ``subject``: the feeder's 16 (:func:`experiments.margins.axes.axes`) or a
-    family's parameters and mu (:func:`experiments.margins.axes.family_axes`)."""
-    if isinstance(subject, FamilySubject):
-        return family_axes(subject.family())
-    return axes()
+    family's parameters and mu (:func:`experiments.margins.axes.family_axes`); only those of
+    ``kinds`` ("design", "friction", "part") when given."""
+    found = family_axes(subject.family()) if isinstance(subject, FamilySubject) else axes()
+    return found if kinds is None else tuple(a for a in found if a.kind in kinds)
 
 
 def design_verdict_of(subject: MarginSubject, settings: MarginSettings) -> Verdict:
@@ -154,22 +154,53 @@ def margins_of(
     settings: MarginSettings,
     workers: int = 1,
     on_axis: Callable[[AxisMargin], object] | None = None,
+    kinds: Collection[str] | None = None,
 ) -> MarginsReport:
     """The verdict of ``subject`` (sequential, as ``simulate --samples``), then, if it works,
-    the margin of every axis (:func:`axes_of`) on ``workers`` processes; ``on_axis`` is called
-    here as each axis finishes."""
+    the margin of every axis (:func:`axes_of`, those of ``kinds`` when given) on ``workers``
+    processes; ``on_axis`` is called here as each axis finishes."""
+    return margins_of_each({"": subject}, settings, workers, on_axis, kinds)[""]
+
+
+def margins_of_each(
+    subjects: Mapping[str, MarginSubject],
+    settings: MarginSettings,
+    workers: int = 1,
+    on_axis: Callable[[AxisMargin], object] | None = None,
+    kinds: Collection[str] | None = None,
+) -> dict[str, MarginsReport]:
+    """:func:`margins_of` for several designs by label, every axis of every design that works
+    in one pool (the workers stay busy across designs); each report's wall time is the
+    whole call's."""
     t0 = time.perf_counter()
-    verdict = design_verdict_of(subject, settings)
-    margins: list[AxisMargin] = []
-    if verdict.works:
-        jobs = [AxisJob(subject, axis, settings) for axis in axes_of(subject)]
-        margins = map_jobs(
+    verdicts = {label: design_verdict_of(s, settings) for label, s in subjects.items()}
+    jobs: list[AxisJob] = []
+    owners: list[str] = []
+    for label, subject in subjects.items():
+        if verdicts[label].works:
+            for axis in axes_of(subject, kinds):
+                jobs.append(AxisJob(subject, axis, settings))
+                owners.append(label)
+    found = (
+        map_jobs(
             measure_axis,
             jobs,
             workers,
             on_result=None if on_axis is None else lambda _i, m: on_axis(m),
             ompl=False,
         )
-    return MarginsReport(
-        subject, settings, verdict, tuple(margins), time.perf_counter() - t0, workers
+        if jobs
+        else []
     )
+    wall = time.perf_counter() - t0
+    return {
+        label: MarginsReport(
+            subject,
+            settings,
+            verdicts[label],
+            tuple(m for m, owner in zip(found, owners, strict=True) if owner == label),
+            wall,
+            workers,
+        )
+        for label, subject in subjects.items()
+    }

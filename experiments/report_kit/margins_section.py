@@ -24,14 +24,40 @@ MARGINS = "margins"
 TIGHTEST = 3  # axes named in the one-line summary
 
 
-def margins_figures(margins: dict[str, Any] | None, figures_dir: Path) -> dict[str, Path]:
+def margins_figures(
+    margins: dict[str, Any] | None,
+    figures_dir: Path,
+    baseline: dict[str, Any] | None = None,
+) -> dict[str, Path]:
     """The margins chart (:func:`experiments.margins.figure.margins_chart`) of a design that
-    has margins, as ``{MARGINS: path}``; nothing for a design without them."""
+    has margins, beside ``baseline``'s (another design's margins) when given, as
+    ``{MARGINS: path}``; nothing for a design without them."""
     if not margins or not margins.get("margins"):
         return {}
     from experiments.margins.figure import margins_chart
 
-    return {MARGINS: margins_chart(margins, figures_dir / f"{MARGINS}.png")}
+    other = baseline if baseline and baseline.get("margins") else None
+    return {MARGINS: margins_chart(margins, figures_dir / f"{MARGINS}.png", other)}
+
+
+def robustness_sentence(margins: dict[str, Any], baseline: dict[str, Any] | None = None) -> str:
+    """The design's robustness (its smallest room inside the box over its parameters and
+    mu, :func:`experiments.margins.robustness.robustness`), beside ``baseline``'s."""
+    from experiments.margins.robustness import robustness
+
+    def said(m: dict[str, Any]) -> str:
+        r = robustness(m)
+        if not m.get("works"):
+            return f"{m.get('design', 'the design')}: none (it does not work on these draws)"
+        if r.unlimited:
+            return f"{m.get('design')}: every side reaches the box's edge"
+        where = f"{r.axis} {r.side}" if r.side else f"{r.axis} has no margin"
+        low, high = r.bracket
+        top = "" if math.isinf(high) else f", between {100 * low:.1f}% and {100 * high:.1f}%"
+        return f"{m.get('design')}: {100 * r.value:.1f}% of its box ({where}{top})"
+
+    text = "smallest margin over the parameters and mu, " + said(margins)
+    return text if baseline is None else f"{text}; {said(baseline)}"
 
 
 def tightest(margins: dict[str, Any], count: int = TIGHTEST) -> list[dict[str, Any]]:
@@ -95,10 +121,14 @@ def margins_sentence(margins: dict[str, Any]) -> str:
 
 
 def margins_html(
-    margins: dict[str, Any] | None, figures: dict[str, Path], absent: str | None = None
+    margins: dict[str, Any] | None,
+    figures: dict[str, Path],
+    absent: str | None = None,
+    baseline: dict[str, Any] | None = None,
 ) -> list[str]:
     """The section's parts: heading, what was measured and its cost, the tightest axes, the
-    chart and the table of every axis; ``absent`` (why there are no margins) when
+    robustness (beside ``baseline``'s: another design's margins), the chart and the table of
+    every axis (with ``baseline``'s room beside); ``absent`` (why there are no margins) when
     ``margins`` is None."""
     e = html.escape
     if margins is None:
@@ -107,10 +137,12 @@ def margins_html(
             f"<p>No margins: {e(absent or 'nothing to measure')}.</p>",
         ]
     name = str(margins.get("design", "the design"))
+    other = str(baseline.get("design", "the baseline")) if baseline else None
     meaning = str(margins.get("meaning", ""))
     cost = margins.get("cost") or {}
+    beside = f" beside {e(other)}'s" if other else ""
     parts = [
-        f'<h2 id="margins">How much tolerance it has: the margins of {e(name)}</h2>',
+        f'<h2 id="margins">How much tolerance it has: the margins of {e(name)}{beside}</h2>',
         f"<p>{e(meaning[:1].upper() + meaning[1:])}. "
         f"Target {cell(margins.get('target'))}, {cell(margins.get('drops_per_value'))} "
         f"trials per value (seed {cell(margins.get('seed'))}). Cost: "
@@ -122,37 +154,43 @@ def margins_html(
         return parts
     sentence = margins_sentence(margins)
     parts.append(f"<p><b>{e(sentence[0].upper() + sentence[1:])}.</b></p>")
-    parts.append(figure_html(figures, MARGINS, f"tolerance margins of {name}"))
+    robust = robustness_sentence(margins, baseline)
+    parts.append(f"<p><b>Robustness:</b> {e(robust[0].upper() + robust[1:])}.</p>")
+    parts.append(figure_html(figures, MARGINS, f"tolerance margins of {name}{beside}"))
+    theirs = {str(r["parameter"]): r for r in (baseline or {}).get("margins") or []}
     rows = []
     for row in margins.get("margins") or []:
         r = room(row)
         interval = row.get("interval")
-        rows.append(
-            [
-                str(row["parameter"]),
-                str(row.get("meaning", "")),
-                cell(row.get("nominal"), ".4g"),
-                DASH if interval is None else f"[{interval[0]:.4g}, {interval[1]:.4g}]",
-                f"[{row['box'][0]:.4g}, {row['box'][1]:.4g}] ({row.get('box_source', '')})",
-                _percent(None if r is None else r[0], at_edge(row, "low")),
-                _percent(None if r is None else r[1], at_edge(row, "high")),
+        cells = [
+            str(row["parameter"]),
+            str(row.get("meaning", "")),
+            cell(row.get("nominal"), ".4g"),
+            DASH if interval is None else f"[{interval[0]:.4g}, {interval[1]:.4g}]",
+            f"[{row['box'][0]:.4g}, {row['box'][1]:.4g}] ({row.get('box_source', '')})",
+            _percent(None if r is None else r[0], at_edge(row, "low")),
+            _percent(None if r is None else r[1], at_edge(row, "high")),
+        ]
+        if other is not None:
+            b = theirs.get(str(row["parameter"]))
+            rb = None if b is None else room(b)
+            cells += [
+                DASH if b is None else _percent(None if rb is None else rb[0], at_edge(b, "low")),
+                DASH if b is None else _percent(None if rb is None else rb[1], at_edge(b, "high")),
             ]
-        )
-    parts.append(
-        html_table(
-            [
-                "axis",
-                "meaning",
-                "nominal",
-                "allowed interval",
-                "box",
-                "room below (of box)",
-                "room above (of box)",
-            ],
-            rows,
-            (0, 1, 4),
-        )
-    )
+        rows.append(cells)
+    header = [
+        "axis",
+        "meaning",
+        "nominal",
+        "allowed interval",
+        "box",
+        "room below (of box)",
+        "room above (of box)",
+    ]
+    if other is not None:
+        header += [f"{other}: room below", f"{other}: room above"]
+    parts.append(html_table(header, rows, (0, 1, 4)))
     parts.append(
         '<p class="note">"≥": the end reached the box\'s edge, so the room may be larger; '
         "the search stops at the box.</p>"

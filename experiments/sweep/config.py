@@ -41,6 +41,10 @@ and its allowed range. Example (``experiments/configs/default.yaml``)::
                                           # stops designs before the verdict threw away
     workers: 2                            # processes (local executor)
     max_attempts: 2                       # worker deaths before a design is quarantined
+    report: {margins: device}             # whose margins the report measures: device (the
+                                          # confirmed designs' and the baseline's, over the
+                                          # parameters and mu, to rank them by robustness),
+                                          # all (the part's axes too) or skip
 
 A family config may not have the ``necessary`` rung (its tests are the 12-parameter feeder's)
 and its family must have two entries (the results' two entry columns hold them, in the file's
@@ -150,6 +154,7 @@ class SweepConfig:
     max_attempts: int = 2
     family: str | None = None  # the family file's absolute path; None: the 12-parameter feeder
     family_yaml: str = ""  # the family file's text, as read when the config was
+    report_margins: str = "device"  # whose margins the report measures, and on which axes
 
     def device_family(self) -> DeviceFamily | None:
         """The config's device family (None: the 12-parameter feeder), read from its text."""
@@ -175,6 +180,12 @@ class SweepConfig:
             ),
             "workers": self.workers,
             "max_attempts": self.max_attempts,
+            # the default is left out: the document a config had before ``report``
+            **(
+                {"report": {"margins": self.report_margins}}
+                if self.report_margins != REPORT_MARGINS[0]
+                else {}
+            ),
         }
 
     def results_key(self) -> str:
@@ -183,6 +194,7 @@ class SweepConfig:
         data = self.to_dict()
         data.pop("workers")
         data.pop("name")
+        data.pop("report", None)  # what the report measures decides no result
         if "family" in data:  # what the family says, not where its file lies
             data["family"] = text_digest(self.family_yaml)
         for rung in data["ladder"]:  # the default is left out: such a config keeps the key
@@ -226,6 +238,10 @@ def _drop_settings(spec: Any, field_name: str, key: str, keys: set[str], kind: A
         raise ConfigError(f"{field_name}.{exc}") from None
 
 
+# ``report.margins``: "device" measures the margins of the confirmed designs and the baseline
+# over the device's axes (parameters, mu) to rank them by robustness; "all" adds the part's
+# axes; "skip" measures none (the recommendation is then by reliability alone)
+REPORT_MARGINS = ("device", "all", "skip")
 WILSON_KEYS = {"target", "min_drops", "batch", "max_drops", "step", "t_max"}
 # the SPRT's, held only when it is the rule (a Wilson config keeps its results key)
 VERDICT_KEYS = WILSON_KEYS | {"rule", "works_p", "fails_p", "error"}
@@ -351,6 +367,7 @@ def _config_from_dict(data: Any, name: str, base: Path) -> SweepConfig:
             "audit",
             "workers",
             "max_attempts",
+            "report",
         },
     )
     family, family_yaml = None, ""
@@ -404,6 +421,12 @@ def _config_from_dict(data: Any, name: str, base: Path) -> SweepConfig:
     audit_seed = integer_field(audit.get("seed", 0), "audit.seed", 0, 2**31 - 1)
     workers = integer_field(data.get("workers", 2), "workers", 1, 1024)
     attempts = integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100)
+    report = mapping_field(data.get("report", {}) or {}, "report", {"margins"})
+    report_margins = report.get("margins", REPORT_MARGINS[0])
+    if report_margins not in REPORT_MARGINS:
+        raise ConfigError(
+            f"report.margins = {shown(repr(report_margins))}; allowed: {', '.join(REPORT_MARGINS)}"
+        )
     return SweepConfig(
         name=name_field(data.get("name", name)),
         count=count,
@@ -419,6 +442,7 @@ def _config_from_dict(data: Any, name: str, base: Path) -> SweepConfig:
         max_attempts=attempts,
         family=family,
         family_yaml=family_yaml,
+        report_margins=str(report_margins),
     )
 
 

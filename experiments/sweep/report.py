@@ -36,7 +36,7 @@ from experiments.sweep.report_figures import (
 from experiments.sweep.report_html import html_page
 from experiments.sweep.report_recommendation import (
     Progress,
-    margins_of_recommended,
+    margins_of_contenders,
     recommendation_of,
 )
 from experiments.sweep.report_verdicts import TRANSITIONS, comparison_of, verdict_figures
@@ -47,7 +47,7 @@ if TYPE_CHECKING:
 
 FIGURES = ("survivors", "feasible_set", "planners", "pruning", "best_designs")
 # what a report finds beyond the sweep's summary, for the summary a job prints
-FINDINGS = ("comparison", "recommendation", "margins")
+FINDINGS = ("comparison", "recommendation", "margins", "baseline_margins")
 
 
 def write_report(
@@ -87,11 +87,15 @@ def report_with_findings(
     table3, or a device family's default design) on the same fresh draws, drawn over it
     (:func:`experiments.sweep.report_verdicts.comparison_of`, 40 trials of both entries per
     design and for the baseline). The page opens with the recommendation
-    (:func:`experiments.sweep.report_recommendation.recommendation_of`: the first of those
-    ranked on the fresh draws, only when they confirm it works), whose tolerance margins
-    (:func:`experiments.sweep.report_recommendation.margins_of_recommended`, about 30 s on 2
-    workers) are computed on ``workers`` processes (default the sweep's) unless ``margins``
-    is False, with ``progress`` told as each axis is done. The database at ``db_path`` gives
+    (:func:`experiments.sweep.report_recommendation.recommendation_of`: among the designs
+    those draws confirm and the baseline, by reliability on the same draws, then by
+    robustness, the smallest margin: a design or "keep the baseline"). The confirmed
+    designs' and the baseline's tolerance margins
+    (:func:`experiments.sweep.report_recommendation.margins_of_contenders`) are computed on
+    ``workers`` processes (default the sweep's) unless ``margins`` is False or the sweep's
+    config says ``report.margins: skip``, with ``progress`` told as each axis is done; the
+    recommended design's are shown beside the other's (``baseline_margins``: the baseline's,
+    or the best design's when the baseline is kept). The database at ``db_path`` gives
     the per-design verdicts and the per-run planner numbers the figures need. Figures of an
     earlier report that this one does not draw (no best designs yet) are removed, so the
     page and the directory agree. The HTML is written to a temporary file and renamed, so a
@@ -123,13 +127,18 @@ def report_with_findings(
         if "absent" not in comparison:
             drawn = {"family": family} if family is not None else _environment(summary)
             figures.update(comparison_figures(comparison, figures_dir, **drawn))
-    recommendation = recommendation_of(summary, comparison)
-    margins_data: dict[str, Any] | None = None
-    if margins and recommendation["confirmed"] and comparison is not None:
-        margins_data = margins_of_recommended(
-            summary, Path(db_path), comparison, recommendation["label"], workers, progress
-        )
-        figures.update(margins_figures(margins_data, figures_dir))
+    contenders: dict[str, dict[str, Any]] | None = None
+    if margins and comparison is not None and "absent" not in comparison:
+        contenders = margins_of_contenders(summary, Path(db_path), comparison, workers, progress)
+    recommendation = recommendation_of(summary, comparison, contenders)
+    margins_data = baseline_margins = None
+    if contenders and recommendation["confirmed"]:
+        label = recommendation["label"]
+        other = recommendation.get("contender") if recommendation.get("kept") else None
+        other = other or str(comparison["baseline"]["label"])  # type: ignore[index]
+        margins_data = contenders.get(label)
+        baseline_margins = contenders.get(other) if other != label else None
+        figures.update(margins_figures(margins_data, figures_dir, baseline_margins))
     for name in FIGURES:
         stale = figures_dir / f"{name}.png"
         if name not in figures and stale.exists():
@@ -147,6 +156,7 @@ def report_with_findings(
         "comparison": comparison,
         "recommendation": recommendation,
         "margins": margins_data,
+        "baseline_margins": baseline_margins,
     }
     page = out_dir / "report.html"
     partial = out_dir / "report.html.partial"

@@ -143,6 +143,8 @@ def _recommendation_box(summary: dict) -> str:
         summary.get("margins"),
         str(recommendation.get("chosen") or ""),
         absent=str(recommendation.get("sentence") or ""),
+        decision=recommendation,
+        baseline_margins=summary.get("baseline_margins"),
     )
 
 
@@ -159,7 +161,7 @@ def _margins_parts(summary: dict, figures: dict[str, Path]) -> list[str]:
             else "no design is recommended, so none has its margins measured"
         )
         return margins_html(None, figures, absent=why)
-    return margins_html(summary["margins"], figures)
+    return margins_html(summary["margins"], figures, baseline=summary.get("baseline_margins"))
 
 
 def _designed(family: dict | None) -> str:

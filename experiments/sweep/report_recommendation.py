@@ -13,17 +13,23 @@ device family's design, issue 24: per parameter of the family over its box, and 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from experiments.report_kit.recommendation import KEEP
+
 if TYPE_CHECKING:
     from experiments.margins.measure import MarginSubject
+    from experiments.margins.robustness import Robustness
 
 CONFIRMED = "confirmed"
 NOT_REJUDGED = "not re-judged"
 MARGINS_TAG = 0x3A261  # mixed into the sweep's seed: the margins' draws are none of its others
 MARGINS_DROPS = 20  # trials per value tried, as ``partfeeder margins``'s default
+RELIABILITY_ALPHA = 0.05  # one-sided level of the paired test "more reliable than"
+BUILD, NONE = "build", "none"
+MARGIN_AXES = {"device": ("design", "friction"), "all": None}  # a sweep's ``margins.axes``
 
 # ``progress(event, info)``: ("margins", {"design", "axes"}) when the margins start, then
 # ("axis", {"parameter"}) as each axis is done
@@ -58,11 +64,20 @@ def design_label(design_id: int) -> str:
     return f"design {design_id}"
 
 
-def recommendation_of(summary: dict[str, Any], comparison: dict[str, Any] | None) -> dict:
+def recommendation_of(
+    summary: dict[str, Any],
+    comparison: dict[str, Any] | None,
+    margins: Mapping[str, dict[str, Any]] | None = None,
+) -> dict:
     """The design to build: ``label`` (None when no design is confirmed), ``confirmed``,
     ``sentence`` (its confirmation on the fresh draws, or why nothing is recommended),
-    ``chosen`` (how it was chosen) and ``ranking`` (the compared labels, as ranked on the
-    fresh draws)."""
+    ``chosen`` (how it was chosen), ``ranking`` (the compared labels, as ranked on the fresh
+    draws) and ``decision`` ("build", "keep the baseline" or "none").
+
+    With ``margins`` (per label, the baseline's included: :func:`margins_of_contenders`)
+    the confirmed designs are ranked by reliability, then by robustness
+    (:func:`robust_choice`): the baseline is kept unless a design is more reliable on the
+    same draws by the paired exact test, or more robust beyond the margins' resolution."""
     from experiments.report_kit.comparison_section import fresh_ranking
 
     works = (summary.get("passive") or {}).get("works")
@@ -84,13 +99,15 @@ def recommendation_of(summary: dict[str, Any], comparison: dict[str, Any] | None
     labels = [r["label"] for r in ranking]
     top = ranking[0]
     if top["confirmed"]:
-        return {
+        first = {
             "label": top["label"],
             "confirmed": True,
             "sentence": top["sentence"],
-            "chosen": chosen,
+            "chosen": chosen + "; robustness not measured (margins skipped)",
             "ranking": labels,
+            "decision": BUILD,
         }
+        return first if margins is None else robust_choice(first, comparison, ranking, margins)
     status = fresh_status(comparison)
     said = ", ".join(f"{label} {status[label].removeprefix('not confirmed ')}" for label in labels)
     return {
@@ -103,8 +120,136 @@ def recommendation_of(summary: dict[str, Any], comparison: dict[str, Any] | None
     }
 
 
+def reliability(entry: dict[str, Any]) -> dict[str, Any]:
+    """How a compared design's reliability stands against the baseline's on the same fresh
+    draws: the discordant draws (``design_only``, ``baseline_only``) and the one-sided exact
+    paired test each way (``p_better``, ``p_worse``; McNemar's,
+    :func:`experiments.proportions.paired_exact_p`); ``better`` / ``worse`` when the p-value
+    is below :data:`RELIABILITY_ALPHA`."""
+    from experiments.proportions import paired_exact_p
+
+    paired = entry.get("paired") or {"draws": 0, "design_only": 0, "baseline_only": 0}
+    mine, theirs = int(paired["design_only"]), int(paired["baseline_only"])
+    p_better, p_worse = paired_exact_p(mine, theirs), paired_exact_p(theirs, mine)
+    return {
+        "draws": int(paired["draws"]),
+        "design_only": mine,
+        "baseline_only": theirs,
+        "p_better": p_better,
+        "p_worse": p_worse,
+        "better": p_better < RELIABILITY_ALPHA,
+        "worse": p_worse < RELIABILITY_ALPHA,
+    }
+
+
+def _percent(r: Robustness) -> str:
+    if r.unlimited:
+        return "unlimited within the box"
+    where = f" ({r.axis} {r.side})" if r.side else f" ({r.axis}: no margin)" if r.axis else ""
+    return f"{100.0 * r.value:.1f}%{where}"
+
+
+def robust_choice(
+    first: dict[str, Any],
+    comparison: dict[str, Any],
+    ranking: list[dict[str, Any]],
+    margins: Mapping[str, dict[str, Any]],
+) -> dict[str, Any]:
+    """The recommendation once the confirmed designs' and the baseline's robustness is known
+    (issue 34): among the confirmed designs, the one more reliable than the baseline by the
+    paired test first, then the most robust (:func:`experiments.margins.robustness.robustness`,
+    the fresh ranking breaking ties); that design is built only when it is more reliable than
+    the baseline, or the baseline was not confirmed, or it is more robust than the baseline
+    beyond the resolution (:func:`experiments.margins.robustness.more_robust`) and not less
+    reliable; otherwise the baseline is kept. ``robustness`` (per label, its ``to_dict``),
+    ``reliability`` (per design, :func:`reliability`), ``contender`` (the best design
+    against the baseline) and ``baseline`` are added."""
+    from experiments.margins.robustness import more_robust, robustness
+
+    base = comparison["baseline"]
+    name = str(base["label"])
+    entries = {str(d["label"]): d for d in comparison.get("designs") or []}
+    confirmed = [r["label"] for r in ranking if r["confirmed"]]
+    robust = {label: robustness(m) for label, m in margins.items()}
+    zero = robustness({"works": False})
+    reliable = {label: reliability(entries[label]) for label in confirmed}
+    order = sorted(
+        confirmed,
+        key=lambda label: (
+            not reliable[label]["better"],
+            -robust.get(label, zero).value,
+            confirmed.index(label),
+        ),
+    )
+    best = order[0]
+    mine, theirs = robust.get(best, zero), robust.get(name, zero)
+    base_confirmed = _confirmed(base, comparison)
+    rel = reliable[best]
+    d_only, b_only = rel["design_only"], rel["baseline_only"]
+    paired = (
+        f"on the same {rel['draws']} draws {best} succeeded alone on {d_only} and {name} alone "
+        f"on {b_only} (paired exact test, one-sided p = {rel['p_better']:.3g})"
+    )
+    robust_text = f"smallest margin {_percent(mine)} of its box against {name}'s {_percent(theirs)}"
+    if not base_confirmed:
+        decision, why = BUILD, f"{name} is not confirmed on the same draws; {robust_text}"
+    elif rel["better"]:
+        decision, why = BUILD, f"more reliable than {name}: {paired}; {robust_text}"
+    elif rel["worse"]:
+        decision, why = KEEP, f"less reliable than {name}: {paired}"
+    elif more_robust(mine, theirs):
+        decision, why = BUILD, f"as reliable as {name} ({paired}) and more robust: {robust_text}"
+    else:
+        decision, why = (
+            KEEP,
+            (
+                f"{best} is no more reliable ({paired}) and not more robust beyond the margins' "
+                f"resolution: {robust_text}"
+            ),
+        )
+    chosen = first["chosen"].removesuffix("; robustness not measured (margins skipped)")
+    chosen += (
+        f"; the confirmed designs and {name} then ranked by reliability against {name} "
+        "(paired exact test, one-sided 5%), then by robustness (the smallest margin over the "
+        "design's parameters and friction, as a fraction of its box)"
+    )
+    out = {
+        **first,
+        "chosen": chosen,
+        "decision": decision,
+        "why": why,
+        "contender": best,
+        "baseline": name,
+        "robustness": {label: r.to_dict() for label, r in robust.items()},
+        "reliability": reliable,
+    }
+    if decision == KEEP:
+        _, sentence = _confirmation(base, comparison)
+        out.update(label=name, sentence=sentence, kept=True)
+    else:
+        out.update(label=best, sentence=_confirmation(entries[best], comparison)[1])
+    return out
+
+
+def _confirmed(entry: dict[str, Any], comparison: dict[str, Any]) -> bool:
+    return _confirmation(entry, comparison)[0]
+
+
+def _confirmation(entry: dict[str, Any], comparison: dict[str, Any]) -> tuple[bool, str]:
+    from experiments.report_kit.comparison_section import confirmation
+
+    return confirmation(entry, int(comparison["drops"]), float(comparison["target"]))
+
+
 def _none(why: str) -> dict[str, Any]:
-    return {"label": None, "confirmed": False, "sentence": why, "chosen": None, "ranking": []}
+    return {
+        "label": None,
+        "confirmed": False,
+        "sentence": why,
+        "chosen": None,
+        "ranking": [],
+        "decision": NONE,
+    }
 
 
 def margins_seed(sweep_seed: int, avoid: tuple[int, ...] = ()) -> int:
@@ -115,30 +260,38 @@ def margins_seed(sweep_seed: int, avoid: tuple[int, ...] = ()) -> int:
     return fresh_seed(sweep_seed, avoid, MARGINS_TAG)
 
 
-def margins_of_recommended(
+def margins_of_contenders(
     summary: dict[str, Any],
     db_path: Path,
     comparison: dict[str, Any],
-    label: str,
     workers: int | None = None,
     progress: Progress | None = None,
-) -> dict[str, Any] | None:
-    """The margins (:meth:`experiments.margins.run.MarginsReport.to_dict`) of the compared
-    design ``label`` (:func:`margin_subject`: the feeder's 16 axes, or a device family's
-    parameters over its box and mu) with the sweep's passive rung's target, step and
-    perturbations, ``MARGINS_DROPS`` trials per value on a seed derived from the sweep's
-    (:func:`margins_seed`), on ``workers`` processes (default the sweep's workers); None
-    when the sweep has no passive rung."""
+) -> dict[str, dict[str, Any]] | None:
+    """The margins (:meth:`experiments.margins.run.MarginsReport.to_dict`), per label, of
+    the designs the fresh draws confirmed and of the baseline (:func:`margin_subject`: the
+    feeder's parameters and mu, or a device family's; the part's axes too when the sweep's
+    ``report.margins`` is "all"), all in one worker pool, with the sweep's passive rung's
+    target, step and perturbations, ``MARGINS_DROPS`` trials per value on a seed derived
+    from the sweep's (:func:`margins_seed`), on ``workers`` processes (default the sweep's);
+    None when the sweep has no passive rung, its config says ``report.margins: skip``, or
+    nothing was confirmed."""
     from experiments.margins.measure import MarginSettings
-    from experiments.margins.run import axes_of, margins_of
+    from experiments.margins.run import axes_of, margins_of_each
     from experiments.sweep.report_verdicts import passive_settings, sweep_config
 
     config = sweep_config(db_path)
     settings = passive_settings(config)
-    if settings is None:
+    which = str((config.get("report") or {}).get("margins", "device"))
+    if settings is None or which == "skip" or not comparison.get("designs"):
         return None
-    entry = next(d for d in comparison["designs"] if str(d["label"]) == label)
-    subject = margin_subject(summary, db_path, list(entry["values"]), label)
+    confirmed = [d for d in comparison["designs"] if _confirmed(d, comparison)]
+    if not confirmed:
+        return None
+    subjects = {
+        str(d["label"]): margin_subject(summary, db_path, list(d["values"]), str(d["label"]))
+        for d in [comparison["baseline"], *confirmed]
+    }
+    kinds = MARGIN_AXES[which]
     sweep_seed = int((config.get("designs") or {}).get("seed", 0))
     avoid = (*comparison.get("ranked_with", ()), int(comparison["seed"]))
     margin_settings = MarginSettings(
@@ -151,16 +304,18 @@ def margins_of_recommended(
     )
     count = workers if workers is not None else int(config.get("workers") or 1)
     if progress is not None:
-        progress("margins", {"design": label, "axes": len(axes_of(subject))})
-    report = margins_of(
-        subject,
+        axes = sum(len(axes_of(s, kinds)) for s in subjects.values())
+        progress("margins", {"design": ", ".join(subjects), "axes": axes})
+    reports = margins_of_each(
+        subjects,
         margin_settings,
         max(1, count),
         on_axis=None
         if progress is None
         else lambda margin: progress("axis", {"parameter": margin.axis.name}),
+        kinds=kinds,
     )
-    return report.to_dict()
+    return {label: report.to_dict() for label, report in reports.items()}
 
 
 def margin_subject(
