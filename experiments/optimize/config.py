@@ -55,6 +55,7 @@ from experiments.family_config import (
     text_digest,
 )
 from experiments.names import OPTIMIZER_NAMES, PRESET_NAMES
+from experiments.optimize.centering import CenteringSettings
 from feeders.fields import (
     FieldError,
     field_errors_as,
@@ -73,6 +74,20 @@ if TYPE_CHECKING:
 MAX_BUDGET = 1_000_000
 MAX_TRIALS = 10_000
 METHOD_STARTS = ("starts", "best")
+EQ10 = "eq10"  # minimise R, the robust form of Eq. 10 (the default)
+ROBUSTNESS = "robustness"  # maximise the smallest normalised margin at the target (issue 34)
+GOALS = (EQ10, ROBUSTNESS)
+CENTERING_FIELDS = {
+    "budget",
+    "step",
+    "min_step",
+    "explore",
+    "spread",
+    "seed",
+    "starts",
+    "drops",
+    "focus",
+}
 
 
 class OptimizeConfigError(FieldError):
@@ -128,6 +143,8 @@ class OptimizeConfig:
     max_attempts: int = 2
     family: str | None = None  # the family file's absolute path; None: the 12-parameter feeder
     family_yaml: str = ""  # the family file's text, as read when the config was
+    goal: str = EQ10  # what is optimised: Eq. 10's R (eq10) or the robustness (robustness)
+    centering: CenteringSettings = field(default_factory=CenteringSettings)
 
     def device_family(self) -> DeviceFamily | None:
         """The config's device family (None: the 12-parameter feeder), read from its text."""
@@ -159,6 +176,12 @@ class OptimizeConfig:
             },
             "workers": self.workers,
             "max_attempts": self.max_attempts,
+            # only when not the default: an Eq. 10 config's dict (and digest) as before
+            **(
+                {"goal": self.goal, "centering": self.centering.to_dict()}
+                if self.goal != EQ10
+                else {}
+            ),
         }
 
     def objective_key(self) -> str:
@@ -256,8 +279,14 @@ def _config_from_dict(data: Any, name: str, base: Path) -> OptimizeConfig:
             "final",
             "workers",
             "max_attempts",
+            "goal",
+            "centering",
         },
     )
+    goal = data.get("goal", EQ10)
+    if goal not in GOALS:
+        raise OptimizeConfigError(f"goal = {shown(repr(goal))}; allowed: {', '.join(GOALS)}")
+    centering = _centering(data.get("centering", {}) or {}, goal)
     family, family_yaml = None, ""
     if "family" in data:
         family, family_yaml = _family_field(data["family"], base)
@@ -282,9 +311,16 @@ def _config_from_dict(data: Any, name: str, base: Path) -> OptimizeConfig:
         raise OptimizeConfigError(str(exc)) from None
     start = mapping_field(data.get("start", {}) or {}, "start", {"presets", "sweep_best"})
     presets = _presets(start, family)
-    methods_spec = data.get("methods")
-    if not isinstance(methods_spec, list) or not methods_spec or len(methods_spec) > 100:
-        raise OptimizeConfigError("methods: expected a list of 1 to 100 methods to run")
+    methods_spec = data.get("methods", [] if goal == ROBUSTNESS else None)
+    if (
+        not isinstance(methods_spec, list)
+        or (not methods_spec and goal == EQ10)
+        or len(methods_spec) > 100
+    ):
+        raise OptimizeConfigError(
+            "methods: expected a list of 1 to 100 methods to run"
+            + (" (0 to 100 with goal: robustness)" if goal == ROBUSTNESS else "")
+        )
     methods = tuple(_method(m, f"methods[{i}]") for i, m in enumerate(methods_spec))
     names = [m.method for m in methods]
     if len(set(names)) != len(names):
@@ -312,6 +348,29 @@ def _config_from_dict(data: Any, name: str, base: Path) -> OptimizeConfig:
         max_attempts=integer_field(data.get("max_attempts", 2), "max_attempts", 1, 100),
         family=family,
         family_yaml=family_yaml,
+        goal=goal,
+        centering=centering,
+    )
+
+
+def _centering(spec: Any, goal: str) -> CenteringSettings:
+    """The ``centering`` section (design centering, the robust goal's method)."""
+    spec = mapping_field(spec, "centering", CENTERING_FIELDS)
+    if spec and goal != ROBUSTNESS:
+        raise OptimizeConfigError(
+            f"centering: given with goal {goal}; allowed only with goal: {ROBUSTNESS}"
+        )
+    d = CenteringSettings()
+    return CenteringSettings(
+        budget=integer_field(spec.get("budget", d.budget), "centering.budget", 1, 10_000),
+        step=number_field(spec.get("step", d.step), "centering.step", 1e-3, 1.0),
+        min_step=number_field(spec.get("min_step", d.min_step), "centering.min_step", 0.0, 1.0),
+        explore=integer_field(spec.get("explore", d.explore), "centering.explore", 0, 100),
+        spread=number_field(spec.get("spread", d.spread), "centering.spread", 0.0, 1.0),
+        seed=integer_field(spec.get("seed", d.seed), "centering.seed", 0, 2**31 - 1),
+        starts=integer_field(spec.get("starts", d.starts), "centering.starts", 1, 100),
+        drops=integer_field(spec.get("drops", d.drops), "centering.drops", 1, MAX_TRIALS),
+        focus=number_field(spec.get("focus", d.focus), "centering.focus", 0.0, 1e6),
     )
 
 

@@ -44,7 +44,7 @@ from experiments.executors import open_pool
 from experiments.family_config import family_default, family_record
 from experiments.optimize import store
 from experiments.optimize.comparison import stored_comparison, verdict_of_trials
-from experiments.optimize.config import OptimizeConfig
+from experiments.optimize.config import ROBUSTNESS, OptimizeConfig
 from experiments.optimize.evaluator import BudgetSpent, Evaluator, Progress
 from experiments.optimize.methods import METHODS, POPULATION_METHODS
 from experiments.optimize.objective import eq10_terms
@@ -52,6 +52,7 @@ from experiments.optimize.tolerance import (
     AxisCallback,
     family_margins,
     optimum_margins,
+    robust_settings_key,
     settings_key,
 )
 from experiments.proportions import wilson_interval
@@ -174,12 +175,14 @@ def optimise(
     progress: Progress | None = None,
     baseline: Baseline | None = None,
     margins: bool = True,
+    measure: Any = None,
 ) -> dict[str, Any]:
     """Run the optimisation of ``config`` in directory ``out`` (resuming what is stored there)
     and return its results as plain data (:func:`results`). ``baseline`` ``(label, values)``,
     table3 (a family's default) unless given, is judged on the optimum's fresh draws;
     ``margins``: the optimum's margins are measured (or read from the store) when it works
-    (the 12-parameter feeder's only)."""
+    (the 12-parameter feeder's only). With ``goal: robustness`` the optimum is design
+    centering's (:func:`_robust`), ``measure`` replacing the margins' measurement (tests)."""
     starts = start_designs(config, sweep_best or [])
     if not starts:
         raise ValueError("start: no start designs (give start.presets, or --from a sweep)")
@@ -208,9 +211,12 @@ def optimise(
             _run_methods(ev, config, starts, progress, space)
             # the baseline's objective, to compare (stored already if it was a start)
             ev.batch(baseline_run(base_key), 1, [base_values])
-            optimum = _validate(ev, config, _runs(config))
+            if config.goal == ROBUSTNESS:
+                optimum = _robust(ev, config, starts, space, base_key, progress, measure)
+            else:
+                optimum = _validate(ev, config, _runs(config))
             _verdicts(ev, config, {OPTIMUM: optimum, label: base_key}, 1)
-        if margins and _works(db, config, OPTIMUM):
+        if margins and config.goal != ROBUSTNESS and _works(db, config, OPTIMUM):
             measured = store.stored_margins(db, optimum, settings_key(config)) is not None
             if space.family is None:
                 on_axis = None if measured else _axis_progress(progress)
@@ -224,6 +230,109 @@ def optimise(
         return out_results
     finally:
         db.close()
+
+
+CENTERING_META = "centering"  # the meta row holding the centring chains (JSON)
+
+
+def robust_measure(
+    ev: Evaluator,
+    config: OptimizeConfig,
+    space: Designed,
+    progress: Progress | None = None,
+    measure: Any = None,
+) -> Any:
+    """values -> the robust objective's margins of that design (the device's axes,
+    :func:`experiments.optimize.tolerance.robust_settings`), stored or measured."""
+    digest = robust_settings_key(config)
+
+    def of(values: list[float]) -> dict[str, Any]:
+        key = store.design_key(values)
+        stored = store.stored_margins(ev.db, key, digest)
+        if stored is not None:
+            return stored
+        axes = len(space.names) + 1
+        on_axis = _axis_progress(progress, axes)
+        if space.family is None:
+            return optimum_margins(
+                ev.db, config, key, "design", config.workers, on_axis, measure, robust=True
+            )
+        return family_margins(
+            ev.db, config, space.family, key, "design", config.workers, on_axis, measure, True
+        )
+
+    return of
+
+
+def _robust(
+    ev: Evaluator,
+    config: OptimizeConfig,
+    starts: dict[str, list[float]],
+    space: Designed,
+    base_key: str,
+    progress: Progress | None,
+    measure: Any = None,
+) -> str:
+    """The robust objective's optimum (issue 34): design centering
+    (:func:`experiments.optimize.centering.design_centering`) from the ``centering.starts``
+    best designs by R (the starts', and the methods' if the config has any), the budget of
+    margins evaluations split between them; then the accepted designs, most robust first
+    (then the shortest mean exit time), each get the reported verdict on fresh draws
+    (``final.seed + 1``) until one works at the target, up to ``final.candidates`` (none:
+    the most robust). The baseline's margins are measured too (the report shows both). The
+    chains are kept in the store's meta (``centering``)."""
+    from experiments.optimize.centering import better, design_centering
+
+    settings = config.centering
+    runs = [(STARTS_RUN, len(starts)), *_runs(config)]
+    keys = ranked_keys(ev.db, runs, settings.starts)
+    names = {store.design_key(v): n for n, v in starts.items()}
+    of = robust_measure(ev, config, space, progress, measure)
+    chains = []
+    for i, key in enumerate(keys):
+        budget = settings.budget // len(keys) + (i < settings.budget % len(keys))
+        chain = design_centering(
+            store.design_of_key(key),
+            space.names,
+            space.low,
+            space.high,
+            of,
+            settings,
+            budget=budget,
+            label=names.get(key, key),
+        )
+        chains.append(chain)
+    store.record_meta(ev.db, CENTERING_META, [c.to_dict() for c in chains])
+    accepted: list[tuple[list[float], dict[str, Any]]] = []
+    for chain in chains:
+        for s in chain.steps:
+            if s.accepted:
+                accepted.append((s.values, of(s.values)))
+    if not accepted:  # no start works: the best start by R, whose verdict says so
+        return keys[0]
+    ranked: list[tuple[list[float], dict[str, Any]]] = []
+    for values, margins in accepted:  # an insertion sort by better(): most robust first
+        at = next((j for j, (_, m) in enumerate(ranked) if better(margins, m)), len(ranked))
+        ranked.insert(at, (values, margins))
+    candidates = list(dict.fromkeys(store.design_key(v) for v, _ in ranked))
+    candidates = candidates[: config.final_candidates]
+    of(store.design_of_key(base_key))  # the baseline's margins, for the report
+    if ev.progress:
+        ev.progress("verdicts", {"verdicts": len(candidates) + 1, "trials": config.final_trials})
+    chosen = candidates[0]
+    for rank, key in enumerate(candidates):
+        _verdicts(ev, config, {robust_label(rank): key}, 1)
+        if _works(ev.db, config, robust_label(rank)):
+            chosen = key
+            break
+    # its R over the K draws, as every design in the results has (Eq. 10's table)
+    ev.batch(f"robust {chosen}", 1, [store.design_of_key(chosen)])
+    return chosen
+
+
+def robust_label(rank: int) -> str:
+    """The label of the ``rank``-th most robust design's verdict on fresh draws."""
+    return f"robust{rank}"
 
 
 def baseline_run(key: str) -> str:
@@ -550,7 +659,35 @@ def results(
             None if None in times else sum(t for t in times if t is not None),
         )
     out["margins"], out["margins_absent"] = _margins(db, config, out.get(OPTIMUM), space)
+    if config.goal == ROBUSTNESS:
+        out["robust"] = robust_results(db, config, out, base_key)
+        out["baseline_margins"] = store.stored_margins(db, base_key, robust_settings_key(config))
     return out
+
+
+def robust_results(db, config: OptimizeConfig, out: dict[str, Any], base_key: str) -> dict:
+    """The robust objective's part of the results: its definition, the centring settings
+    and chains, and the robustness of the optimum and of the baseline (each from its margins
+    on the same draws: :func:`experiments.margins.robustness.robustness`)."""
+    from experiments.margins.robustness import MEANING, robustness
+
+    digest = robust_settings_key(config)
+    mine = out.get("margins")
+    theirs = store.stored_margins(db, base_key, digest)
+    chains = store.stored_meta(db, CENTERING_META) or []
+    return {
+        "goal": ROBUSTNESS,
+        "definition": f"maximise the robustness ({MEANING}) subject to the verdict at "
+        f"{config.final_target} (the design works); Eq. 10's exit time only breaks ties",
+        "method": "design centering: each step moves the parameters toward the centres of "
+        "their allowed intervals, damped, accepted only when the design works and is more "
+        "robust; a rejected step halves the damping",
+        "centering": config.centering.to_dict(),
+        "evaluations": sum(c["evaluations"] for c in chains),
+        "chains": chains,
+        "optimum": None if mine is None else robustness(mine).to_dict(),
+        "baseline": None if theirs is None else robustness(theirs).to_dict(),
+    }
 
 
 FAMILY_NO_COMPARISON = (
@@ -574,7 +711,8 @@ def _margins(
             f"(decision: {verdict.get('decision', 'none')}), so it has no margins"
         )
     key = store.design_key([optimum["values"][n] for n in space.names])
-    stored = store.stored_margins(db, key, settings_key(config))
+    digest = robust_settings_key(config) if config.goal == ROBUSTNESS else settings_key(config)
+    stored = store.stored_margins(db, key, digest)
     if stored is None:
         return None, "they were not measured (the run was stopped before, or told not to)"
     return stored, None

@@ -338,3 +338,15 @@ def stored_margins(db: sqlite3.Connection, key: str, settings: str) -> dict[str,
     except sqlite3.OperationalError:  # an older database, opened read-only
         return None
     return None if row is None else json.loads(row["report"])
+
+
+def record_meta(db: sqlite3.Connection, key: str, value: Any) -> None:
+    """Store ``value`` (plain data, as JSON) in the meta table under ``key``."""
+    with db:
+        db.execute("INSERT OR REPLACE INTO meta VALUES (?, ?)", (key, json.dumps(value)))
+
+
+def stored_meta(db: sqlite3.Connection, key: str) -> Any:
+    """The plain data stored under ``key`` by :func:`record_meta`; None if none."""
+    row = db.execute("SELECT value FROM meta WHERE key = ?", (key,)).fetchone()
+    return None if row is None else json.loads(row[0])

@@ -54,6 +54,57 @@ def settings_key(config: OptimizeConfig) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
+def robust_settings(config: OptimizeConfig) -> Any:
+    """The :class:`experiments.margins.measure.MarginSettings` of the robust objective's
+    evaluations (issue 34): the optimum's (:func:`margin_settings`) with
+    ``centering.drops`` trials per value."""
+    return dataclasses.replace(margin_settings(config), drops=config.centering.drops)
+
+
+def robust_settings_key(config: OptimizeConfig) -> str:
+    """A digest of what decides a robust evaluation: :func:`robust_settings`, the scene, and
+    that only the device's axes are measured (not the part's)."""
+    settings = dataclasses.asdict(robust_settings(config))
+    text = json.dumps(
+        {"settings": settings, "feeder": config.feeder, "axes": "device"}, sort_keys=True
+    )
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def device_margins_of(
+    subject: Any, settings: Any, workers: int = 1, on_axis: AxisCallback | None = None
+) -> Any:
+    """:func:`experiments.margins.run.margins_of` over the device's axes only (the design's
+    parameters and mu; a feeder's part axes left out: robustness never reads them): the
+    verdict at nominal, then one job per axis in the local worker pool."""
+    import time
+
+    from experiments.executors.local import map_jobs
+    from experiments.margins.measure import AxisJob, measure_axis
+    from experiments.margins.robustness import DEVICE_KINDS
+    from experiments.margins.run import MarginsReport, axes_of, design_verdict_of
+
+    t0 = time.perf_counter()
+    verdict = design_verdict_of(subject, settings)
+    margins: list[Any] = []
+    if verdict.works:
+        jobs = [
+            AxisJob(subject, axis, settings)
+            for axis in axes_of(subject)
+            if axis.kind in DEVICE_KINDS
+        ]
+        margins = map_jobs(
+            measure_axis,
+            jobs,
+            workers,
+            on_result=None if on_axis is None else lambda _i, m: on_axis(m),
+            ompl=False,
+        )
+    return MarginsReport(
+        subject, settings, verdict, tuple(margins), time.perf_counter() - t0, workers
+    )
+
+
 def _stored_or_measured(
     db: sqlite3.Connection,
     config: OptimizeConfig,
@@ -62,19 +113,22 @@ def _stored_or_measured(
     workers: int,
     on_axis: AxisCallback | None,
     measure: Callable[..., Any] | None,
+    robust: bool = False,
 ) -> dict[str, Any]:
     """The margins of design ``key``: stored ones when measured before with the same
     settings, else those of ``subject()`` (made only then) measured on ``workers`` processes
     (``on_axis`` called as each axis finishes) and stored. ``measure`` replaces
-    :func:`experiments.margins.run.margins_of` (tests count calls)."""
-    digest = settings_key(config)
+    :func:`experiments.margins.run.margins_of` (tests count calls). ``robust``: the robust
+    objective's evaluation (:func:`robust_settings`, the device's axes only)."""
+    digest = robust_settings_key(config) if robust else settings_key(config)
     stored = store.stored_margins(db, key, digest)
     if stored is not None:
         return stored
     from experiments.margins.run import margins_of
 
-    run = measure or margins_of
-    data = run(subject(), margin_settings(config), workers, on_axis=on_axis).to_dict()
+    run = measure or (device_margins_of if robust else margins_of)
+    settings = robust_settings(config) if robust else margin_settings(config)
+    data = run(subject(), settings, workers, on_axis=on_axis).to_dict()
     store.record_margins(db, key, digest, data)
     return data
 
@@ -87,6 +141,7 @@ def optimum_margins(
     workers: int = 1,
     on_axis: AxisCallback | None = None,
     measure: Callable[..., Any] | None = None,
+    robust: bool = False,
 ) -> dict[str, Any]:
     """The margins of the feeder's design ``key`` (:meth:`experiments.margins.run.
     MarginsReport.to_dict`, named ``label``), stored or measured (:func:`_stored_or_measured`)
@@ -109,7 +164,7 @@ def optimum_margins(
         )
         return Subject.of_scene(scene)
 
-    return _stored_or_measured(db, config, key, subject, workers, on_axis, measure)
+    return _stored_or_measured(db, config, key, subject, workers, on_axis, measure, robust)
 
 
 def family_margins(
@@ -121,6 +176,7 @@ def family_margins(
     workers: int = 1,
     on_axis: AxisCallback | None = None,
     measure: Callable[..., Any] | None = None,
+    robust: bool = False,
 ) -> dict[str, Any]:
     """The margins of the device family's design ``key``, named ``label``, stored or measured
     as the feeder's (:func:`_stored_or_measured`): the axes the family's parameters over its
@@ -133,4 +189,4 @@ def family_margins(
         vector = store.design_of_key(key)
         return FamilySubject.of_family(family, config.family_yaml, vector, name=label)
 
-    return _stored_or_measured(db, config, key, subject, workers, on_axis, measure)
+    return _stored_or_measured(db, config, key, subject, workers, on_axis, measure, robust)
