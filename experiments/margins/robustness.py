@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from typing import Any
 
 SIDES = ("low", "high")
+ABUTTING = 1e-9  # box fraction: brackets that merely touch (rounding of the box's steps) tie
 DEVICE_KINDS = ("design", "friction")  # the axes a designer chooses or a feeder wears
 
 
@@ -168,4 +169,4 @@ def more_robust(a: Robustness, b: Robustness) -> bool:
     lies wholly above ``b``'s (``a``'s last inside room beyond ``b``'s first outside)."""
     if a.unlimited:
         return not b.unlimited
-    return a.bracket[0] > b.bracket[1]
+    return a.bracket[0] > b.bracket[1] + ABUTTING
