@@ -14,6 +14,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from experiments.margins.robustness import robustness
+
 INSIDE = "#2b8cbe"  # the allowed interval
 NONE = "#d95f02"  # an axis with no margin (the nominal itself below the target)
 BASELINE = "#fdae6b"  # the baseline's allowed interval, beside the design's
@@ -39,6 +41,15 @@ LABELS = {
 
 def _num(value: float) -> str:
     return f"{value:.3g}"
+
+
+def _smallest(data: dict) -> str:
+    """A design's robustness in a few words (:mod:`experiments.margins.robustness`)."""
+    r = robustness(data)
+    if r.unlimited:
+        return f"{data['design']} none inside the box"
+    where = f"{r.axis} {r.side}" if r.side else f"{r.axis}: none"
+    return f"{data['design']} {100 * r.value:.1f}% ({where})"
 
 
 def _bar(ax, row: dict, y: float, height: float, color: str, end_color: str) -> str:
@@ -78,12 +89,14 @@ def margins_chart(data: dict, path: Path, baseline: dict | None = None) -> Path:
         ax.barh(y, 1.0, left=0.0, height=0.8, color="#e6e6e6", edgecolor="#bdbdbd")
         if baseline is None:
             note = _bar(ax, row, y, 0.62, INSIDE, "#08306b")
+            ax.text(1.03, y, note, va="center", fontsize=9)
         else:
             note = _bar(ax, row, y + 0.19, 0.34, INSIDE, "#08306b")
+            ax.text(1.03, y + 0.19, note, va="center", fontsize=8.5, color="#08306b")
             other = theirs.get(row["parameter"])
             if other is not None:
-                _bar(ax, other, y - 0.19, 0.34, BASELINE, "#7f2704")
-        ax.text(1.03, y, note, va="center", fontsize=9)
+                note = _bar(ax, other, y - 0.19, 0.34, BASELINE, "#7f2704")
+                ax.text(1.03, y - 0.19, note, va="center", fontsize=8.5, color="#7f2704")
         ax.text(1.36, y, f"[{_num(lo)}, {_num(hi)}]", va="center", fontsize=9, color="#636363")
     design_rows = sum(1 for r in rows if r["kind"] == "design")
     if 0 < design_rows < n:
@@ -111,17 +124,18 @@ def margins_chart(data: dict, path: Path, baseline: dict | None = None) -> Path:
         else "blue: allowed interval"
     )
     ax.set_xlabel(
-        f"position in the box (grey bar): {boxes}\n{colours};  ◆ nominal;  "
+        f"position in the box (grey bar): {boxes}\n{colours};  ◆ nominal\n"
         "| an end found inside the box (a full bar reaches the box's edges)",
         fontsize=9,
     )
     classes = (data.get("verdict") or {}).get("success_classes") or ["heavy end down"]
     success = " or ".join(classes)
+    smallest = f"\nsmallest margin: {_smallest(data)}, {_smallest(baseline)}" if baseline else ""
     ax.set_title(
         f"{data['design']}{' beside ' + baseline['design'] if baseline else ''}: tolerance "
         "margins, one parameter at a time (others nominal)\n"
         f"where P(both entries {success}) ≥ {data['target']:g} over "
-        f"{data['drops_per_value']} perturbed drops per entry",
+        f"{data['drops_per_value']} perturbed drops per entry{smallest}",
         fontsize=11,
     )
     for side in ("top", "right"):
