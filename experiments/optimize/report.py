@@ -212,7 +212,9 @@ def write_report(out: Path, config, results: dict[str, Any]) -> Path:
         return page
     figures_dir = out / "figures"
     figures_dir.mkdir(parents=True, exist_ok=True)
-    figures = {CONVERGENCE: convergence_figure(results, figures_dir / f"{CONVERGENCE}.png")}
+    figures = {}
+    if results.get("runs"):  # the robust goal without Eq. 10 methods has no convergence
+        figures[CONVERGENCE] = convergence_figure(results, figures_dir / f"{CONVERGENCE}.png")
     figures.update(strip_figures(config, results, figures_dir))
     figures.update(report_figures(config, results, figures_dir))
     page.write_text(html_page(results, figures))
@@ -231,7 +233,8 @@ def report_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[s
     if comparison:
         environment = environment_from_dict(config.feeder)
         figures.update(comparison_figures(comparison, figures_dir, **environment))
-    figures.update(margins_figures(results.get("margins"), figures_dir))
+    baseline = results.get("baseline_margins")  # the robust goal's: table3's beside
+    figures.update(margins_figures(results.get("margins"), figures_dir, baseline=baseline))
     return figures
 
 
@@ -455,7 +458,98 @@ def _recommendation(results: dict[str, Any]) -> str:
                 f"{baseline}'s {g[1]:.2f} s on the same draws.",
             )
         )
-    return recommendation_html(OPTIMUM, comparison, margins, chosen_sentence(results), notes=notes)
+    robust = results.get("robust")
+    if robust:
+        notes = [("What it maximised", robust_sentence(results))]
+    chosen = robust_chosen_sentence(results) if robust else chosen_sentence(results)
+    return recommendation_html(OPTIMUM, comparison, margins, chosen, notes=notes)
+
+
+def _robustness_text(r: dict[str, Any] | None) -> str:
+    if not r:
+        return "not measured"
+    if r.get("unlimited"):
+        return "unlimited within the box"
+    side = f" {r['side']}" if r.get("side") else ""
+    return f"{r['value']:.3f} of its box ({r.get('axis')}{side})"
+
+
+def robust_sentence(results: dict[str, Any]) -> str:
+    """The robust goal's result in one sentence: the optimum's robustness beside the
+    baseline's, on the same margins draws."""
+    robust = results["robust"]
+    _, baseline = labels(results)
+    return (
+        f"the robustness, the smallest room over the parameters and mu before P(both) falls "
+        f"below the target: {_robustness_text(robust.get('optimum'))} against {baseline}'s "
+        f"{_robustness_text(robust.get('baseline'))}, on the same margins draws"
+    )
+
+
+def robust_chosen_sentence(results: dict[str, Any]) -> str:
+    """How the robust goal's optimum was chosen, with this run's numbers."""
+    robust, final = results["robust"], results.get("final") or {}
+    return (
+        f"design centering from the best start by R, {cell(robust.get('evaluations'))} margins "
+        "evaluations; of the designs it accepted (each works and is more robust than the one "
+        f"before), the most robust whose verdict on {cell(final.get('trials'))} fresh trials "
+        f"(seed {cell((final.get('seed') or 0) + 1)}) works at the target "
+        f"{cell(final.get('target'))}, the baseline judged on the same trials"
+    )
+
+
+ROBUST_HEADERS = [
+    "evaluation",
+    "move",
+    "step factor",
+    "works",
+    "robustness",
+    "limiting axis",
+    "mean exit time (s)",
+    "accepted",
+]
+
+
+def robust_rows(results: dict[str, Any]) -> list[list[str]]:
+    """Per margins evaluation of every centring chain: the move, its damping, whether the
+    design works, its robustness and limiting axis, its mean exit time, accepted or not."""
+    rows, n = [], 0
+    for chain in (results.get("robust") or {}).get("chains") or []:
+        for step in chain["steps"]:
+            n += 1
+            r = step["robustness"]
+            rows.append(
+                [
+                    cell(n),
+                    str(step["move"]),
+                    cell(step["step"], ".3g"),
+                    "yes" if step["works"] else "no",
+                    DASH if r.get("value") is None else f"{r['value']:.4f}",
+                    f"{r.get('axis') or DASH} {r.get('side') or ''}".strip(),
+                    cell(step.get("mean_exit_time_s"), ".3f"),
+                    "yes" if step["accepted"] else "",
+                ]
+            )
+    return rows
+
+
+def robust_html(results: dict[str, Any]) -> list[str]:
+    """The robust goal's "how it was found": its definition, the method and every step."""
+    robust = results.get("robust")
+    if not robust:
+        return []
+    e = html.escape
+    chains = robust.get("chains") or []
+    stopped = "; ".join(f"{c['start']}: {c['stopped']}" for c in chains)
+    return [
+        "<h2>How it was found: the robust objective</h2>",
+        f"<p>{e(robust['definition'][:1].upper() + robust['definition'][1:])}. "
+        f"{e(robust['method'][:1].upper() + robust['method'][1:])}. "
+        f"{e(robust_sentence(results)[:1].upper() + robust_sentence(results)[1:])}.</p>",
+        f'<p class="note">Settings: {e(str(robust.get("centering")))}; stopped: '
+        f"{e(stopped or DASH)}.</p>",
+        html_table(ROBUST_HEADERS, robust_rows(results), (0,)),
+    ]
 
 
 def _strips(results: dict[str, Any], figures: dict[str, Path]) -> list[str]:
@@ -508,7 +602,13 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
         *_absent("The comparison", results.get("comparison_absent")),
         *_family_design_table(results),
         *_strips(results, figures),
-        *margins_html(margins, figures, results.get("margins_absent")),
+        *margins_html(
+            margins,
+            figures,
+            results.get("margins_absent"),
+            baseline=results.get("baseline_margins"),
+        ),
+        *robust_html(results),
         "<h2>How it was found: the objective</h2>",
         "<p>The objective (lower is better): "
         f"{e(obj['definition'])}. K = {cell(obj['trials'])} perturbation draws (seed "
@@ -558,6 +658,8 @@ def summary_text(results: dict[str, Any]) -> str:
         lines.append(" | ".join(row))
     lines.append("")
     lines.append(margins_line(results))
+    if results.get("robust"):
+        lines.append(f"robust objective: {robust_sentence(results)}")
     wall = results.get("wall_time_s")
     if wall is not None and not math.isnan(wall):
         lines.append(f"wall time: {wall:.1f} s")

@@ -75,34 +75,11 @@ def device_margins_of(
     subject: Any, settings: Any, workers: int = 1, on_axis: AxisCallback | None = None
 ) -> Any:
     """:func:`experiments.margins.run.margins_of` over the device's axes only (the design's
-    parameters and mu; a feeder's part axes left out: robustness never reads them): the
-    verdict at nominal, then one job per axis in the local worker pool."""
-    import time
-
-    from experiments.executors.local import map_jobs
-    from experiments.margins.measure import AxisJob, measure_axis
+    parameters and mu; a feeder's part axes left out: robustness never reads them)."""
     from experiments.margins.robustness import DEVICE_KINDS
-    from experiments.margins.run import MarginsReport, axes_of, design_verdict_of
+    from experiments.margins.run import margins_of
 
-    t0 = time.perf_counter()
-    verdict = design_verdict_of(subject, settings)
-    margins: list[Any] = []
-    if verdict.works:
-        jobs = [
-            AxisJob(subject, axis, settings)
-            for axis in axes_of(subject)
-            if axis.kind in DEVICE_KINDS
-        ]
-        margins = map_jobs(
-            measure_axis,
-            jobs,
-            workers,
-            on_result=None if on_axis is None else lambda _i, m: on_axis(m),
-            ompl=False,
-        )
-    return MarginsReport(
-        subject, settings, verdict, tuple(margins), time.perf_counter() - t0, workers
-    )
+    return margins_of(subject, settings, workers, on_axis=on_axis, kinds=DEVICE_KINDS)
 
 
 def _stored_or_measured(

@@ -20,6 +20,7 @@ from experiments.optimize.config import (
     config_from_dict,
     load_config,
 )
+from experiments.optimize.report import summary_text, write_report
 from experiments.optimize.run import DATABASE, optimise, robust_measure
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, preset
 
@@ -51,7 +52,16 @@ class Region:
             rows.append(row(name, "design", x[i], self.a[i], self.b[i], LOW[i], HIGH[i]))
         rows.append(row("mu", "friction", 0.05, 0.0, 0.25, 0.0, 0.3))
         verdict = {"orientations": {"heavy leading": {"mean_exit_time_s": 2.0}}}
-        return {"works": works, "verdict": verdict, "margins": rows if works else []}
+        return {
+            "design": "synthetic",
+            "target": 0.9,
+            "drops_per_value": 20,
+            "seed": 0,
+            "works": works,
+            "verdict": verdict,
+            "margins": rows if works else [],
+            "cost": {"trials": 1, "drops": 2, "wall_time_s": 0.0, "workers": 1},
+        }
 
 
 def side(limit: float, edge: float, step: float) -> dict[str, Any]:
@@ -65,6 +75,9 @@ def row(name, kind, nominal, a, b, low, high) -> dict[str, Any]:
     return {
         "parameter": name,
         "kind": kind,
+        "unit": "-",
+        "meaning": name,
+        "box_source": "Table 2",
         "nominal": float(nominal),
         "box": [float(low), float(high)],
         "interval": [float(a), float(b)],
@@ -238,6 +251,10 @@ def test_the_robust_goal_runs_end_to_end_and_a_run_again_measures_nothing(tmp_pa
     again = optimise(config, tmp_path, measure=measure)
     assert measure.calls == calls  # every evaluation came back from the store
     assert again["robust"] == robust
+    page = write_report(tmp_path, config, again).read_text()
+    assert "How it was found: the robust objective" in page
+    assert "What it maximised" in page
+    assert "robust objective: the robustness" in summary_text(again)
 
 
 def test_the_shipped_robust_config_loads():
