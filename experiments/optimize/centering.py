@@ -90,7 +90,7 @@ def better(new: Mapping[str, Any], old: Mapping[str, Any]) -> bool:
     if not works(new):
         return False
     a, b = robustness(new).value, robustness(old).value
-    if a != b:
+    if not math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12):  # rounding is not robustness
         return a > b
     return mean_exit_time(new) < mean_exit_time(old)
 

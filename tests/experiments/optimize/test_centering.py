@@ -285,3 +285,16 @@ def test_an_eq10_config_is_unchanged_by_the_robust_goal():
     assert "goal" not in config.to_dict() and "centering" not in config.to_dict()
     with pytest.raises(OptimizeConfigError, match="methods"):
         config_from_dict({k: v for k, v in ROBUST.items() if k not in ("goal", "centering")})
+
+
+def test_equal_robustness_up_to_rounding_is_a_tie_broken_by_the_exit_time():
+    from experiments.optimize.centering import better
+
+    region = inner_region()
+    old = region(region.centre.tolist())
+    new = region((region.centre + 1e-15).tolist())  # the same robustness, but for rounding
+    slower = {**new, "verdict": {"orientations": {"x": {"mean_exit_time_s": 2.5}}}}
+    faster = {**new, "verdict": {"orientations": {"x": {"mean_exit_time_s": 1.5}}}}
+    assert not better(slower, old)
+    assert better(faster, old)
+    assert not better({**faster, "works": False}, old)
