@@ -31,7 +31,16 @@ from experiments.drop.verdict import run_trial
 from experiments.drop.verdict_settings import VerdictSettings
 from experiments.family_config import family_of_text
 from experiments.margins.axes import DESIGN, FRICTION, PART, Axis
-from experiments.margins.search import Bracket, Estimate, bracket, required
+from experiments.margins.search import (
+    LOOK,
+    Bracket,
+    Estimate,
+    NominalFailed,
+    Sampler,
+    nominal_estimate,
+    required,
+    search,
+)
 from feeders.design import PARAMETER_NAMES, DesignParameters
 from feeders.feeder import ORIENTATIONS, DegenerateDesign, build_feeder
 from feeders.part import Peg
@@ -178,7 +187,9 @@ MarginSubject = Subject | FamilySubject
 class MarginSettings:
     """How margins are measured: ``drops`` trials per value (each a drop from every entry),
     the ``target`` P(both), the draws' ``seed``, the dynamic level's step h (s) and longest
-    drop (s), and the verdict's perturbations."""
+    drop (s), the verdict's perturbations, and the successes of a ``look`` (a value the
+    search only passes is accepted, tentatively, on that many: the ends reported have the
+    full rule over ``drops``; :mod:`experiments.margins.search`)."""
 
     drops: int = 20
     target: float = 0.9
@@ -186,6 +197,7 @@ class MarginSettings:
     step: float = 1e-3
     t_max: float = 10.0
     perturbations: Perturbations = field(default_factory=Perturbations)
+    look: int = LOOK
 
     def verdict_settings(self) -> VerdictSettings:
         return VerdictSettings(
@@ -259,12 +271,31 @@ def family_made_at(subject: FamilySubject, axis: Axis, value: float) -> Callable
     return make_exact
 
 
+def sampler(subject: MarginSubject, axis: Axis, settings: MarginSettings) -> Sampler:
+    """The trials of ``axis``: trial i at a value is draw i of ``settings.seed`` with the
+    axis at that value exactly (:func:`made_at`), made once and kept
+    (:class:`experiments.margins.search.Sampler`)."""
+    verdict = settings.verdict_settings()
+    made: dict[float, Callable[[DropDraw], Scene]] = {}
+
+    def outcome(value: float, index: int) -> bool | None:
+        if value not in made:
+            made[value] = made_at(subject, axis, value)
+        trial = run_trial(
+            made[value], subject.orientations, verdict, settings.seed, index, subject.parameters
+        )
+        return None if trial.fault else all(trial.success)
+
+    return Sampler(outcome, settings.drops, settings.target)
+
+
 def estimate(
     subject: MarginSubject, axis: Axis, value: float, settings: MarginSettings
 ) -> Estimate:
-    """P(both) with ``axis`` at ``value`` over the first ``settings.drops`` trials (draws
-    0, 1, ... of ``settings.seed``, faults skipped), stopped as soon as so many failed that
-    the target can no longer be reached (the same inside/outside answer, fewer drops)."""
+    """P(both) with ``axis`` at ``value`` by the full rule: over the first
+    ``settings.drops`` trials (draws 0, 1, ... of ``settings.seed``, faults skipped), stopped
+    as soon as so many failed that the target can no longer be reached (the same
+    inside/outside answer, fewer drops)."""
     make = made_at(subject, axis, value)
     verdict = settings.verdict_settings()
     planned = settings.drops
@@ -295,8 +326,11 @@ class AxisJob:
 
 @dataclass(frozen=True)
 class AxisMargin:
-    """One axis's margin: the nominal estimate, the low and high sides (None when the
-    nominal itself is outside: no margin), the box searched, and the cost."""
+    """One axis's margin: the nominal estimate (its look, or its full estimate when the
+    look failed or a side's search came back to it), the low and high sides (None when the
+    nominal itself is outside: no margin), the box searched, and the cost (``discarded``:
+    trials of a side searched before the nominal failed its confirmation, counted in
+    ``drops``)."""
 
     axis: Axis
     nominal: Estimate
@@ -304,6 +338,7 @@ class AxisMargin:
     high: Bracket | None
     box: tuple[float, float]
     wall_time: float
+    discarded: int = 0
 
     @property
     def interval(self) -> tuple[float, float] | None:
@@ -314,25 +349,35 @@ class AxisMargin:
     @property
     def drops(self) -> int:
         sides = [s.drops for s in (self.low, self.high) if s is not None]
-        return self.nominal.drops + sum(sides)
+        return self.nominal.drops + sum(sides) + self.discarded
 
 
 def measure_axis(job: AxisJob) -> AxisMargin:
-    """The margin of ``job.axis``: the nominal estimate, then the search toward each end of
-    the box (the axis's: Table 2's, a stated range or the family's; widened to hold a nominal
-    outside it)."""
+    """The margin of ``job.axis``: the nominal's look (its full estimate when the look
+    fails: outside, no margin), then the search toward each end of the box (the axis's:
+    Table 2's, a stated range or the family's; widened to hold a nominal outside it) on the
+    same kept trials (:func:`experiments.margins.search.search`: values passed on a look,
+    each end confirmed by the full rule; the nominal confirmed only when a side comes back
+    to it)."""
     t0 = time.perf_counter()
     subject, axis, settings = job.subject, job.axis, job.settings
     nominal_value = subject.value(axis)
     box = (min(axis.low, nominal_value), max(axis.high, nominal_value))
-
-    def evaluate(value: float) -> Estimate:
-        return estimate(subject, axis, value, settings)
-
-    nominal = evaluate(nominal_value)
-    low = high = None
-    if nominal.inside(settings.target):
-        width = box[1] - box[0]
-        low = bracket(evaluate, nominal, box[0], width, settings.target)
-        high = bracket(evaluate, nominal, box[1], width, settings.target)
-    return AxisMargin(axis, nominal, low, high, box, time.perf_counter() - t0)
+    trials = sampler(subject, axis, settings)
+    nominal = nominal_estimate(trials, nominal_value, settings.look)
+    if not nominal.inside(settings.target):
+        return AxisMargin(axis, nominal, None, None, box, time.perf_counter() - t0)
+    width = box[1] - box[0]
+    sides: list[Bracket] = []
+    try:
+        for edge in box:
+            sides.append(search(trials, nominal_value, edge, width, look=settings.look))
+    except NominalFailed as failed:
+        discarded = trials.made - failed.estimate.drops
+        return AxisMargin(
+            axis, failed.estimate, None, None, box, time.perf_counter() - t0, discarded
+        )
+    low, high = sides
+    return AxisMargin(
+        axis, trials.estimate(nominal_value), low, high, box, time.perf_counter() - t0
+    )
