@@ -15,8 +15,6 @@ import hashlib
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from feeders.device_family import (
     DeviceFamily,
     FamilyError,
@@ -24,7 +22,14 @@ from feeders.device_family import (
     packaged_families,
     packaged_family,
 )
-from feeders.fields import FieldError, shown
+from feeders.fields import (
+    MAX_DOCUMENT_BYTES,
+    FieldError,
+    parse_document,
+    read_text,
+    shown,
+    shown_value,
+)
 
 FAMILY_DEFAULT = "default"  # a family's default design by name: a baseline, an optimiser's start
 
@@ -43,11 +48,15 @@ def family_file(given: str, base: Path) -> Path | None:
 
 def family_of_text(text: str, name: str) -> DeviceFamily:
     """The family written in ``text`` (a family file's YAML), named ``name`` unless it names
-    itself; :class:`FamilyError` naming the field."""
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise FamilyError(f"not valid YAML ({str(exc).splitlines()[0]})") from None
+    itself; :class:`FamilyError` naming the field. Read by the one bounded reader
+    (:func:`feeders.fields.parse_document`: size, depth, aliases, tags, repeated and merge
+    keys, YAML 1.1's octal and base 60), as a family file is: the text may come from a
+    results database anyone could have written."""
+    if len(text.encode("utf-8", "surrogatepass")) > MAX_DOCUMENT_BYTES:
+        raise FamilyError(
+            f"the family's text is larger than the limit of {MAX_DOCUMENT_BYTES} bytes"
+        )
+    data = parse_document(text, "the family's text", FamilyError)
     return family_from_dict(data, name=name)
 
 
@@ -59,7 +68,7 @@ def read_family_field(
     raised with one line naming the field and what is allowed."""
     if not isinstance(value, str) or not value:
         raise error(
-            f"family = {shown(repr(value))}; allowed: a packaged family's name "
+            f"family = {shown_value(value)}; allowed: a packaged family's name "
             f"({', '.join(packaged_families())}) or a family file"
         )
     path = family_file(value, base)
@@ -68,11 +77,9 @@ def read_family_field(
             f"family = '{shown(value)}' is neither a file (relative to {shown(base)}) nor a "
             f"packaged family; packaged families: {', '.join(packaged_families())}"
         )
+    text = read_text(path, "device family", error)  # bounded: size, regular file, UTF-8
     try:
-        text = path.read_text(encoding="utf-8")
         family = family_of_text(text, path.stem)
-    except (OSError, UnicodeDecodeError) as exc:
-        raise error(f"family: {shown(path)} cannot be read ({exc})") from None
     except FamilyError as exc:
         raise error(f"family: {shown(path)}: {exc}") from None
     return str(path), text, family

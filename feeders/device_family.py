@@ -65,6 +65,7 @@ from feeders.fields import (
     numbers_field,
     read_yaml,
     shown,
+    shown_value,
 )
 from feeders.part import DEFAULT_PEG, Peg
 from feeders.scene import (
@@ -537,7 +538,7 @@ def _goal(
     for name in names:
         if name not in allowed:
             raise FamilyError(
-                f"{where}.orientation = {shown(repr(name))}: not an orientation class of the "
+                f"{where}.orientation = {shown_value(name)}: not an orientation class of the "
                 f"part; the classes are: {', '.join(allowed)} (see orientations)"
             )
     return GoalSpec(x, y, None, yaw_tol, tuple(dict.fromkeys(names)))

@@ -34,7 +34,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from feeders.fields import FieldError, shown
+from feeders.fields import FieldError, shown, shown_value
 
 MAX_SOURCE = 500  # characters of one expression: a device's expressions are a line each
 MAX_NODES = 200  # nodes of one expression's tree (bounds the evaluation's recursion)
@@ -165,7 +165,7 @@ class Expression:
             problem = f"a non-finite result ({result})"
         at = ", ".join(f"{n} = {values[n]:.6g}" for n in sorted(self.names)) or "no parameters"
         raise ExpressionError(
-            f"{self.field} = {shown(repr(self.source))}: {problem} at {at}; "
+            f"{self.field} = {shown_value(self.source)}: {problem} at {at}; "
             "an expression must give a finite number for every parameter value it is used with"
         )
 
@@ -191,7 +191,7 @@ def compile_expression(
         return Expression(repr(value), field, ("num", number), frozenset())
     if not isinstance(value, str):
         what = "a condition" if condition else "a number or an expression"
-        raise ExpressionError(f"{field}: expected {what} as text, got {shown(repr(value))}")
+        raise ExpressionError(f"{field}: expected {what} as text, got {shown_value(value)}")
     if not value.strip():
         raise ExpressionError(f"{field}: an empty expression; allowed: {ALLOWED}")
     if len(value) > MAX_SOURCE:
@@ -203,11 +203,11 @@ def compile_expression(
     except SyntaxError as exc:
         where = f" (column {exc.offset})" if exc.offset else ""
         raise ExpressionError(
-            f"{field} = {shown(repr(value))}: not a valid expression{where}; allowed: {ALLOWED}"
+            f"{field} = {shown_value(value)}: not a valid expression{where}; allowed: {ALLOWED}"
         ) from None
     except (ValueError, RecursionError, MemoryError) as exc:  # a 5,000-digit integer, nesting
         raise ExpressionError(
-            f"{field} = {shown(repr(value))}: cannot be read ({type(exc).__name__}); "
+            f"{field} = {shown_value(value)}: cannot be read ({type(exc).__name__}); "
             f"allowed: {ALLOWED}"
         ) from None
     count = sum(1 for _ in ast.walk(parsed))
@@ -219,7 +219,7 @@ def compile_expression(
     tree, is_condition = compiler.node(parsed.body)
     if is_condition != condition:
         wanted = "a condition (a comparison, and, or, not)" if condition else "a number"
-        raise ExpressionError(f"{field} = {shown(repr(value))}: expected {wanted}")
+        raise ExpressionError(f"{field} = {shown_value(value)}: expected {wanted}")
     return Expression(value, field, tree, frozenset(compiler.names), condition)
 
 
@@ -230,7 +230,7 @@ def _finite_literal(value: int | float, field: str, source: str = "") -> float:
         number = math.inf
     if not math.isfinite(number):
         raise ExpressionError(
-            f"{field} = {shown(repr(source or value))}: a number that is not finite; "
+            f"{field} = {shown_value(source or value)}: a number that is not finite; "
             "numbers must lie within +-1.8e308"
         )
     return number
@@ -246,7 +246,7 @@ class _Compiler:
 
     def refuse(self, what: str) -> ExpressionError:
         return ExpressionError(
-            f"{self.field} = {shown(repr(self.source))}: {what} not allowed; allowed: {ALLOWED}"
+            f"{self.field} = {shown_value(self.source)}: {what} not allowed; allowed: {ALLOWED}"
         )
 
     def number(self, node: ast.expr) -> Tree:
@@ -269,7 +269,7 @@ class _Compiler:
         if isinstance(node, ast.Constant):
             value = node.value
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise self.refuse(f"the constant {shown(repr(value))}")
+                raise self.refuse(f"the constant {shown_value(value)}")
             return ("num", _finite_literal(value, self.field, self.source)), False
         if isinstance(node, ast.Name):
             return self.name(node.id), False
@@ -310,7 +310,7 @@ class _Compiler:
         if name not in self.known:
             known = ", ".join(self.known) or "none"
             raise ExpressionError(
-                f"{self.field} = {shown(repr(self.source))}: unknown name '{shown(name)}'; "
+                f"{self.field} = {shown_value(self.source)}: unknown name '{shown(name)}'; "
                 f"the parameters are: {shown(known)} (and the constant pi)"
             )
         self.names.add(name)
@@ -329,7 +329,7 @@ class _Compiler:
         if not least <= len(node.args) <= most:
             count = str(least) if least == most else f"{least} to {most}"
             raise ExpressionError(
-                f"{self.field} = {shown(repr(self.source))}: {name} takes {count} "
+                f"{self.field} = {shown_value(self.source)}: {name} takes {count} "
                 f"argument(s), got {len(node.args)}"
             )
         return ("call", name, args)

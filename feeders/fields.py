@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import re
+import reprlib
 import stat
 import unicodedata
 from collections.abc import Iterator
@@ -27,6 +28,30 @@ def shown(text: object) -> str:
     return f"{text[:50]}...{text[-50:]} ({len(text)} characters)"
 
 
+class _BoundedRepr(reprlib.Repr):
+    """``repr`` that stops early: a value from a document (an alias-expanded list of millions
+    of items, a 4,000-digit integer) is never turned into a whole string to be shortened."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.maxlevel, self.maxlist, self.maxtuple, self.maxdict, self.maxset = 3, 8, 8, 8, 8
+        self.maxstring, self.maxother, self.maxlong = 200, 200, 80
+
+    def repr_int(self, x: int, level: int) -> str:
+        if x.bit_length() > 256:  # converting it whole is slow (and refused past 4,300 digits)
+            return f"<an integer of {x.bit_length()} bits>"
+        return super().repr_int(x, level)
+
+
+_REPR = _BoundedRepr()
+
+
+def shown_value(value: object) -> str:
+    """``value``'s repr for a one-line message, bounded whatever the value (at most a few
+    hundred characters, built without the whole repr)."""
+    return shown(_REPR.repr(value))
+
+
 class FieldError(ValueError):
     """A field of a document that is missing, of the wrong type or out of range."""
 
@@ -46,7 +71,7 @@ def field_errors_as(error: type[FieldError]) -> Iterator[None]:
 def number_field(value: Any, field: str, low: float = -math.inf, high: float = math.inf) -> float:
     """``value`` as a finite float in [low, high]."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise FieldError(f"{field}: expected a number, got {shown(repr(value))}")
+        raise FieldError(f"{field}: expected a number, got {shown_value(value)}")
     try:
         number = float(value)
     except OverflowError:  # an int beyond 1.8e308
@@ -59,7 +84,7 @@ def number_field(value: Any, field: str, low: float = -math.inf, high: float = m
 def integer_field(value: Any, field: str, low: int, high: int) -> int:
     """``value`` as an int in [low, high] (a float such as 3.0 is not accepted)."""
     if isinstance(value, bool) or not isinstance(value, int):
-        raise FieldError(f"{field}: expected an integer, got {shown(repr(value))}")
+        raise FieldError(f"{field}: expected an integer, got {shown_value(value)}")
     if not (low <= value <= high):
         raise FieldError(f"{field} = {shown(value)} is outside the allowed range [{low}, {high}]")
     return int(value)
@@ -68,7 +93,7 @@ def integer_field(value: Any, field: str, low: int, high: int) -> int:
 def numbers_field(value: Any, field: str, count: int) -> list[float]:
     """``value`` as a list of ``count`` finite floats."""
     if not isinstance(value, (list, tuple)) or len(value) != count:
-        raise FieldError(f"{field}: expected a list of {count} numbers, got {shown(repr(value))}")
+        raise FieldError(f"{field}: expected a list of {count} numbers, got {shown_value(value)}")
     return [number_field(v, f"{field}[{i}]") for i, v in enumerate(value)]
 
 
@@ -84,13 +109,13 @@ def name_field(value: Any, field: str = "name") -> str:
     without white space at either end (refused, not stripped: the name a user wrote is the
     name of the sweep's directory and of OMPL's experiment)."""
     if not isinstance(value, (str, int, float)) or isinstance(value, bool):
-        raise FieldError(f"{field}: expected a string, got {shown(repr(value))}")
+        raise FieldError(f"{field}: expected a string, got {shown_value(value)}")
     name = str(value)
     if not 1 <= len(name) <= MAX_NAME:
         raise FieldError(f"{field}: {len(name)} characters; a name has 1 to {MAX_NAME} characters")
     if "/" in name or name in (".", "..") or any(_breaks_lines(c) for c in name):
         raise FieldError(
-            f"{field} = {name!r}: a name cannot hold '/', control characters or line "
+            f"{field} = {shown_value(name)}: a name cannot hold '/', control characters or line "
             "separators, or be '.' or '..'"
         )
     if name != name.strip():  # OMPL's log reader strips it: the name would change on its way
@@ -103,7 +128,7 @@ def name_field(value: Any, field: str = "name") -> str:
 def mapping_field(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
     """``value`` as a mapping whose keys are all in ``allowed``."""
     if not isinstance(value, dict):
-        raise FieldError(f"{field}: expected a mapping, got {shown(repr(value))}")
+        raise FieldError(f"{field}: expected a mapping, got {shown_value(value)}")
     unknown = sorted(map(str, set(value) - allowed))
     if unknown:
         raise FieldError(f"{field}: unknown key(s) {shown(unknown)}; allowed: {sorted(allowed)}")
@@ -177,6 +202,8 @@ def _check_events(text: str) -> None:
             if at_key[0] and isinstance(event, yaml.ScalarEvent):
                 if event.value in keys:
                     problem = "a repeated key (the same key twice in one mapping)"
+                elif event.value == "<<" and not event.style:
+                    problem = "a merge key (<<) is not allowed; write the keys out"
                 keys.add(event.value)
             at_key[0] = not at_key[0]
         if isinstance(event, yaml.AliasEvent):
@@ -202,7 +229,7 @@ def _check_events(text: str) -> None:
             raise yaml.composer.ComposerError(None, None, problem, event.start_mark)
 
 
-def _read_text(path: Path, kind: str, error: type[FieldError]) -> str:
+def read_text(path: Path, kind: str, error: type[FieldError]) -> str:
     """The UTF-8 text of a regular file of at most ``MAX_DOCUMENT_BYTES``, without blocking
     on a FIFO or reading a device forever."""
     try:
@@ -243,18 +270,26 @@ def parse_yaml(text: str) -> Any:
     return yaml.load(text, Loader=_PARSER)  # a safe loader
 
 
+def parse_document(text: str, where: str, error: type[FieldError]) -> Any:
+    """:func:`parse_yaml` of ``text`` (a file's, or a text a database keeps), any problem
+    raised as ``error`` on one line beginning with ``where``, never quoting the text."""
+    try:
+        return parse_yaml(text)
+    except yaml.YAMLError as exc:
+        raise error(f"{where} is not valid YAML: {_yaml_problem(exc)}") from None
+    except ValueError as exc:  # an integer too long to convert
+        raise error(f"{where}: {str(exc).split(';')[0]}") from None
+    except RecursionError:  # nesting is bounded before any object is built; kept as a guard
+        raise error(f"{where} is nested too deep (at most {MAX_DEPTH} levels)") from None
+
+
 def read_yaml(path: Path, kind: str, error: type[FieldError]) -> Any:
     """The document in the YAML file ``path`` (``yaml.safe_load``, bounded: a regular UTF-8
     file of at most ``MAX_DOCUMENT_BYTES``, no aliases, at most ``MAX_DEPTH`` levels), a
     mapping; a file that cannot be read or parsed, or whose document is not a mapping, raises
     ``error`` naming the file (``kind``: what it is), never quoting its content."""
-    text = _read_text(Path(path), kind, error)
-    try:
-        document = parse_yaml(text)
-    except yaml.YAMLError as exc:
-        raise error(f"'{shown(path)}' is not valid YAML: {_yaml_problem(exc)}") from None
-    except ValueError as exc:  # an integer too long to convert
-        raise error(f"'{shown(path)}': {str(exc).split(';')[0]}") from None
+    text = read_text(Path(path), kind, error)
+    document = parse_document(text, f"'{shown(path)}'", error)
     if not isinstance(document, dict):  # named, never echoed: it may be any file at all
         what = {str: "text", list: "a list", type(None): "empty"}.get(type(document), "a number")
         raise error(

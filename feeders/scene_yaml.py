@@ -40,7 +40,7 @@ from feeders.fields import (
     number_field,
     numbers_field,
     read_yaml,
-    shown,
+    shown_value,
 )
 from feeders.part import PartError, Peg
 from feeders.scene import Goal, InputSet, Scene
@@ -87,7 +87,7 @@ def _part(spec: Any, composite: bool = False) -> Peg | CompositePart:
         if spec == "cup":
             return cup_part()
         raise SceneError(
-            f"part = {shown(repr(spec))}: not a packaged part; packaged parts: "
+            f"part = {shown_value(spec)}: not a packaged part; packaged parts: "
             f"{', '.join(PACKAGED_PARTS)} (or give a mapping)"
         )
     if composite and isinstance(spec, dict) and set(spec) & COMPOSITE_KEYS:

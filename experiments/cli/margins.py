@@ -126,7 +126,10 @@ def _subject(args: argparse.Namespace) -> Any:
         raise UsageError(f"--values: the family's design cannot be built: {exc}") from None
     except ValueError as exc:  # a value that is not finite
         raise UsageError(f"--values: {exc}") from None
-    text = family_path(args.family).read_text(encoding="utf-8")
+    from feeders.device_family import FamilyError
+    from feeders.fields import read_text
+
+    text = read_text(family_path(args.family), "device family", FamilyError)  # bounded
     return FamilySubject.of_family(family, text, vector)
 
 

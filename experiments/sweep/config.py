@@ -74,6 +74,7 @@ from feeders.fields import (
     number_field,
     read_yaml,
     shown,
+    shown_value,
 )
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
@@ -293,7 +294,7 @@ def _rung(spec: Any, field_name: str) -> Rung:
     level = spec.get("level")
     if not isinstance(level, str) or level not in LEVEL_NAMES:
         raise ConfigError(
-            f"{field_name}.level = {shown(repr(level))}; allowed: {', '.join(RUNG_NAMES)}"
+            f"{field_name}.level = {shown_value(level)}; allowed: {', '.join(RUNG_NAMES)}"
         )
     planners = spec.get("planners", ["rrt"])
     if not isinstance(planners, list) or not planners:
@@ -301,7 +302,7 @@ def _rung(spec: Any, field_name: str) -> Rung:
     for i, p in enumerate(planners):
         if not isinstance(p, str) or p.lower() not in PLANNER_NAMES:
             raise ConfigError(
-                f"{field_name}.planners[{i}] = {shown(repr(p))}; "
+                f"{field_name}.planners[{i}] = {shown_value(p)}; "
                 f"allowed: {', '.join(PLANNER_NAMES)}"
             )
     planners = [p.lower() for p in planners]
@@ -325,7 +326,7 @@ def _rung(spec: Any, field_name: str) -> Rung:
     )
     prunes = spec.get("prunes", False)
     if not isinstance(prunes, bool):
-        raise ConfigError(f"{field_name}.prunes = {shown(repr(prunes))}; allowed: true, false")
+        raise ConfigError(f"{field_name}.prunes = {shown_value(prunes)}; allowed: true, false")
     return Rung(level, tuple(planners), runs, time_s, propagations, prunes=prunes)
 
 
@@ -425,7 +426,7 @@ def _config_from_dict(data: Any, name: str, base: Path) -> SweepConfig:
     report_margins = report.get("margins", REPORT_MARGINS[0])
     if report_margins not in REPORT_MARGINS:
         raise ConfigError(
-            f"report.margins = {shown(repr(report_margins))}; allowed: {', '.join(REPORT_MARGINS)}"
+            f"report.margins = {shown_value(report_margins)}; allowed: {', '.join(REPORT_MARGINS)}"
         )
     return SweepConfig(
         name=name_field(data.get("name", name)),

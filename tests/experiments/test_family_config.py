@@ -66,3 +66,53 @@ def test_the_record_rebuilds_the_same_family_and_the_digest_follows_the_text(
         family.default()
     )
     assert text_digest(text) != text_digest(text + "\n# a comment\n")
+
+
+# issue 37, item 1: a config's family file is read by the one bounded reader
+_FIG1 = (Path(__file__).parents[2] / "feeders" / "families" / "fig1.yaml").read_text()
+_THETA = "theta: {low: 0.3, high: 0.9, default: 0.5}"
+_HOSTILE_TEXTS = {  # each but the first three a family plain safe_load accepts
+    "alias bomb": "a: &a [x, x, x, x, x, x, x, x, x]\n"
+    + "".join(
+        f"{c}: &{c} [{', '.join(['*' + p] * 9)}]\n"
+        for p, c in zip("abcdefgh", "bcdefghi", strict=True)
+    )
+    + "parameters:\n  theta: *i\n",
+    "long integer": "parameters: " + "7" * 5000 + "\n",
+    "deep nesting": "parameters: " + "[" * 5000 + "]" * 5000 + "\n",
+    "duplicate key": _FIG1 + "name: again\n",
+    "tag": _FIG1.replace("name: fig1", "name: !!str fig1"),
+    "merge key": _FIG1.replace(_THETA, "theta: {<<: {low: 0.3}, high: 0.9, default: 0.5}"),
+    "octal": _FIG1.replace("name: fig1", "name: 017"),
+}
+assert all(_FIG1 != text for text in _HOSTILE_TEXTS.values())
+
+
+@pytest.mark.parametrize("kind", sorted(_HOSTILE_TEXTS))
+def test_a_family_text_is_refused_by_the_bounded_reader_in_one_line(
+    kind: str, tmp_path: Path
+) -> None:
+    text = _HOSTILE_TEXTS[kind]
+    (tmp_path / "hostile.yaml").write_text(text)
+    with pytest.raises(_Refused) as caught:
+        read_family_field("hostile.yaml", tmp_path, _Refused)
+    message = str(caught.value)
+    assert message.startswith("family: ") and "\n" not in message and len(message) < 1000
+    with pytest.raises(FieldError) as again:  # a text stored in a database, read again
+        family_of_text(text, "stored")
+    assert "\n" not in str(again.value) and len(str(again.value)) < 1000
+
+
+def test_a_family_file_too_big_not_text_or_not_a_file_is_refused_unread(tmp_path: Path) -> None:
+    import os
+
+    (tmp_path / "big.yaml").write_bytes(b"# " + b"x" * (2 << 20) + b"\n")
+    (tmp_path / "latin1.yaml").write_bytes(b"name: caf\xe9\n")
+    os.mkfifo(tmp_path / "fifo.yaml")
+    for name, words in [
+        ("big.yaml", "limit"),
+        ("latin1.yaml", "not UTF-8"),
+        ("fifo.yaml", "not a regular file|neither a file"),
+    ]:
+        with pytest.raises(_Refused, match=words):
+            read_family_field(name, tmp_path, _Refused)
