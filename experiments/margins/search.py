@@ -25,14 +25,18 @@ outside (failed, curtailed); every other value is judged on a *look* of a trial 
   rejected within ``resolution`` of the box), the rejected one gets the full rule first,
   then the accepted one, each on the trials it already has plus the rest of its N. A
   confirmation that contradicts the look makes the value inside (or outside) for good, and
-  the search goes on from the bracket that gives, just as the search on full estimates went
-  on from that value: the ends are where it would have put them, on fewer trials. A wrong
-  look costs trials, never a wrong statement.
+  the search goes on from the bracket that gives. A wrong look costs trials, never a wrong
+  statement. Where the full rule's answers cross once, the ends are those of the search on
+  full estimates (:func:`bracket`); where they do not (noise near an end), another crossing
+  may be found, its ends still meeting the full rule (table3, seeds 0-4: every end the
+  same).
 - **The box's edge first.** Its look, and its full rule when the look passes: a side whose
   edge is inside is done in one value after a *scan*: a look at each doubling point the
   search on full estimates would have judged on its way (an inside edge beyond a failing
-  band, table3's fy from 1.12 to at least 2.5, must not hide the band). A scan's failure
-  sends the search back to bisection from there.
+  band: table3's fy fails from 1.12 on and works again at 2.5, its edge). A scan's failure sends the
+  search back to bisection from there. A look of one trial sees a band where P(both) is
+  p with probability 1 - p at each doubling point in it: a band where most trials fail is
+  found, a shallow one may not be (the search on full estimates would have judged it).
 - **The nominal** is taken as accepted (the caller's look, :func:`nominal_estimate`) and
   gets the full rule only when a side comes back to it: :class:`NominalFailed` when that
   fails (the axis has no margin).
@@ -41,7 +45,8 @@ The trials are injected (``outcome(value, index)``: does trial ``index`` at ``va
 succeed from every entry, None for a fault of the simulation), so the search is tested on
 synthetic success functions with known thresholds; :func:`bracket` runs the same search on
 an estimator of full estimates (``evaluate(value) -> Estimate``), every value by the full
-rule.
+rule: its ends are those of the doubling-then-bisection search before issue 34 (the edge
+judged first, then every doubling point up to the first outside, as that search did).
 """
 
 from __future__ import annotations

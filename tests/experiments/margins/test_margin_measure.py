@@ -1,6 +1,7 @@
 """P(both) at a value uses common random numbers: every value of an axis sees the same seeded
-draws, with only the axis varied exact; the same seed gives the same margins; a design that
-does not work gets none."""
+draws, with only the axis varied exact; the same seed gives the same margins; on a real axis
+the ends meet the full rule and the cost counts every trial made; a design that does not
+work gets none."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import dataclasses
 import pytest
 
 from experiments.drop.perturbations import Perturbations, draw
+from experiments.drop.verdict import run_trial
 from experiments.margins.axes import axes
 from experiments.margins.measure import (
     AxisJob,
@@ -19,6 +21,7 @@ from experiments.margins.measure import (
     measure_axis,
 )
 from experiments.margins.run import margins_of
+from experiments.margins.search import required
 from feeders.design import PARAMETER_NAMES
 from feeders.scene_spec import design_scene
 
@@ -74,6 +77,40 @@ def test_the_same_seed_gives_the_same_estimate_and_margin(table3):
     ]
     lo, hi = first.box
     assert lo <= first.interval[0] <= table3.design.r <= first.interval[1] <= hi
+
+
+def test_a_margin_is_the_same_every_time(table3):
+    """The same seed gives the same margin, every estimate alike (the search is sequential
+    within an axis's job, so the number of workers cannot change it)."""
+    job = AxisJob(table3, AXES["theta"], MarginSettings(drops=6, seed=2))
+    first, second = measure_axis(job), measure_axis(job)
+    assert (first.nominal, first.low, first.high) == (second.nominal, second.low, second.high)
+
+
+def test_the_ends_meet_the_full_rule_and_every_trial_made_is_counted(table3, monkeypatch):
+    """On a real axis: each end reported inside has all its N trials counted and enough
+    successes, each first outside failed the rule; the nominal is a look of one trial; the
+    margin's cost is every trial made (faults aside)."""
+    import experiments.margins.measure as measure
+
+    made = []
+
+    def counted(*args, **kwargs):
+        trial = run_trial(*args, **kwargs)
+        made.append(trial.fault)
+        return trial
+
+    monkeypatch.setattr(measure, "run_trial", counted)
+    settings = MarginSettings(drops=6, seed=1)
+    margin = measure_axis(AxisJob(table3, AXES["theta"], settings))
+    assert margin.interval is not None
+    assert (margin.nominal.successes, margin.nominal.drops, margin.nominal.planned) == (1, 1, 1)
+    for side in (margin.low, margin.high):
+        assert side.inside.drops == side.inside.planned == 6
+        assert side.inside.successes >= required(settings.target, 6)
+        if side.outside is not None:
+            assert side.outside.planned == 6 and side.outside.failed(settings.target)
+    assert margin.drops == made.count(False)
 
 
 def test_a_design_that_does_not_work_gets_no_margins():
