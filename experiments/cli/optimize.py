@@ -31,7 +31,8 @@ def add_arguments(opt: argparse.ArgumentParser) -> None:
         nargs="?",
         default="optimize",
         help="optimisation config: a YAML file, or a shipped one by name: optimize (a few "
-        "minutes), optimize-compare (every method, several seeds)",
+        "minutes), optimize-compare (every method, several seeds), robust (maximise the smallest "
+        "normalised margin at the verdict's target: design centering)",
     )
     opt.add_argument(
         "--from",

@@ -661,7 +661,11 @@ def results(
     out["margins"], out["margins_absent"] = _margins(db, config, out.get(OPTIMUM), space)
     if config.goal == ROBUSTNESS:
         out["robust"] = robust_results(db, config, out, base_key)
-        out["baseline_margins"] = store.stored_margins(db, base_key, robust_settings_key(config))
+        theirs = store.stored_margins(db, base_key, robust_settings_key(config))
+        # the stored margins are named as evaluated ("design"): named here as reported
+        if out["margins"] is not None:
+            out["margins"] = {**out["margins"], "design": OPTIMUM}
+        out["baseline_margins"] = None if theirs is None else {**theirs, "design": label}
     return out
 
 
