@@ -159,6 +159,18 @@ def _make_planner(spec: PlannerSpec, si: oc.SpaceInformation) -> ob.Planner:
     return planner
 
 
+def _check_property_name(name: str) -> None:
+    """Refuse an experiment parameter OMPL's log reader cannot take (it adds the property as
+    a column without quoting): :func:`planners.sql_names.column_name_problem`. A column of
+    OMPL's experiments table of the same spelling (``seed``) is let through: the reader keeps
+    its own value."""
+    from planners.sql_names import OMPL_EXPERIMENT_COLUMNS, RULE, column_name_problem
+
+    problem = column_name_problem(name)
+    if problem is not None and name not in OMPL_EXPERIMENT_COLUMNS:
+        raise ValueError(f"parameter '{name[:100]}': {problem}; a parameter is {RULE}")
+
+
 @one_at_a_time
 def benchmark_problem(
     scene: Scene,
@@ -275,6 +287,7 @@ def benchmark_control_problem(
         wrapped.append(_Counted(si, inner, counts, budget.propagations))
         bench.addPlanner(wrapped[-1])
     for key, value in (parameters or {}).items():
+        _check_property_name(key)
         kind = "INTEGER" if isinstance(value, (int, np.integer)) else "REAL"
         if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
             kind = "STRING"

@@ -6,30 +6,41 @@ is shared by the jobs: :mod:`experiments.family_config`.
 
 from __future__ import annotations
 
-import re
 from contextlib import closing
 from pathlib import Path
 
 from experiments.family_config import family_of_text
 from experiments.sweep.results_db import connect, stored_family
 from feeders.device_family import DeviceFamily
+from feeders.fields import shown
 
-# a parameter becomes a column of the results database's ``designs`` table, unquoted
-COLUMN_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 # the column names the ``designs`` table already has (SQLite compares them without case)
 TAKEN_COLUMNS = {"design_id", "holdout"}
+# the experiment properties a sweep's job adds to OMPL's log beside the parameters
+# (experiments.sweep.job): a parameter of that name would be overwritten
+JOB_PROPERTIES = {"design_id", "level", "seed"}
 
 
 def column_problem(family: DeviceFamily) -> str | None:
-    """Why the family's parameter names cannot be the ``designs`` table's columns, or None:
-    each must be an identifier (letters, digits, '_') other than ``design_id`` and
-    ``holdout``, and no two may differ only in case (SQLite's column names do not)."""
+    """Why the family's parameter names cannot be columns, or None. A parameter becomes a
+    column of the results database's ``designs`` table and an experiment property of OMPL's
+    log, which OMPL's reader adds as a column without quoting: each name must pass
+    :func:`planners.sql_names.column_name_problem` (a plain identifier, not an SQL keyword,
+    not a column of OMPL's experiments table) and not be one of the sweep's own columns and
+    properties, in any case; no two may differ only in case (SQLite's column names do not)."""
+    from planners.sql_names import RULE, column_name_problem
+
     names = family.vector_names
+    own = sorted(TAKEN_COLUMNS | JOB_PROPERTIES)
     for name in names:
-        if not COLUMN_NAME.fullmatch(name) or name.lower() in TAKEN_COLUMNS:
+        problem = column_name_problem(name)
+        if problem is None and name.lower() in own:
+            problem = "a column the sweep writes itself"
+        if problem is not None:
             return (
-                f"parameter '{name}' cannot name a results column; allowed: letters, digits "
-                f"and '_', not starting with a digit, other than {', '.join(sorted(TAKEN_COLUMNS))}"
+                f"parameters.{shown(name)}: {problem}; a swept family's parameter becomes a "
+                f"column of the results database and of OMPL's: allowed: {RULE}, other than "
+                f"{', '.join(own)}"
             )
     lowered = [n.lower() for n in names]
     if len(set(lowered)) != len(lowered):

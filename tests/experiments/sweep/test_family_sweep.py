@@ -125,7 +125,9 @@ def test_a_family_with_a_parameter_that_cannot_name_a_column_is_refused(tmp_path
     }
     text = yaml.safe_dump(data, sort_keys=False).replace("pin_r", "holdout")
     (tmp_path / "bad.yaml").write_text(text)
-    with pytest.raises(ConfigError, match=r"^family: .*parameter 'holdout' cannot name"):
+    with pytest.raises(
+        ConfigError, match=r"^family: .*parameters.holdout: a column the sweep writes itself"
+    ):
         config_from_dict({**TINY_FAMILY, "family": "bad.yaml"}, base=tmp_path)
 
 
@@ -295,3 +297,19 @@ def test_a_family_sweep_is_the_same_on_the_dask_executor(swept: Path, tmp_path: 
     )
     for query in queries:
         assert _rows(swept / "results.sqlite", query) == _rows(remote, query), query
+
+
+@pytest.mark.parametrize("name", ["index", "order", "select", "Seed", "level", "name", "KEY"])
+def test_a_family_parameter_that_ompls_reader_cannot_take_is_refused_at_load(
+    tmp_path: Path, name: str
+) -> None:
+    """Issue 37, item 2: OMPL's log reader adds the experiment's properties as columns without
+    quoting; ``index`` broke the export after the whole sweep, with a message calling the
+    database damaged. Refused at the config's load, naming the file, the field and the rule."""
+    text = FIG1.read_text().replace("pin_r", name)
+    (tmp_path / "bad.yaml").write_text(text)
+    with pytest.raises(ConfigError) as caught:
+        config_from_dict({**TINY_FAMILY, "family": "bad.yaml"}, base=tmp_path)
+    message = str(caught.value)
+    assert message.startswith("family: ") and "bad.yaml" in message and "\n" not in message
+    assert f"parameters.{name}" in message and "SQL keyword" in message
