@@ -115,6 +115,37 @@ def header_problem(header: bytes, size: int) -> str | None:
     return None
 
 
+WAL_HEADER_BYTES = 32
+WAL_FRAME_HEADER_BYTES = 24
+
+
+def wal_has_frames(path: str | Path) -> bool:
+    """Whether a ``-wal`` beside ``path`` holds at least one frame (a page written after the
+    last checkpoint): SQLite then takes the database's size and newest pages from it, not
+    from the main file's header."""
+    wal = Path(path).with_name(Path(path).name + "-wal")
+    try:
+        info = wal.stat()
+    except OSError:
+        return False
+    if not stat.S_ISREG(info.st_mode) or info.st_size < WAL_HEADER_BYTES:
+        return False
+    with wal.open("rb") as handle:
+        header = handle.read(WAL_HEADER_BYTES)
+    if header[:4] not in (b"\x37\x7f\x06\x82", b"\x37\x7f\x06\x83"):  # WAL magic
+        return False
+    page = int.from_bytes(header[8:12], "big")
+    return info.st_size >= WAL_HEADER_BYTES + WAL_FRAME_HEADER_BYTES + page
+
+
+def size_problem_in_wal(path: str | Path, problem: str | None) -> bool:
+    """Whether :func:`header_problem`'s ``problem`` is only the main file being shorter than
+    its header says while a ``-wal`` holds frames: the state a full disk leaves in the middle
+    of a checkpoint (page 1 written, the pages after it not), every page still in the WAL.
+    SQLite reads such a database whole through its WAL; the next checkpoint completes it."""
+    return problem is not None and "truncated" in problem and wal_has_frames(path)
+
+
 def check_file(
     path: str | Path,
     schema: str,
@@ -122,6 +153,7 @@ def check_file(
     what: str,
     added_later: Collection[str] = (),
     content_problem: ContentCheck | None = None,
+    trust_wal: bool = False,
 ) -> bool:
     """Refuse (``damaged(path, problem)``) a file at ``path`` that is not a sound database of
     ``schema``, reading only: a header that is not SQLite's, a file that SQLite finds damaged
@@ -130,8 +162,10 @@ def check_file(
     (``what`` names the kind in the message), or rows ``content_problem`` says its writer cannot
     have written. A missing or empty file passes (it becomes a new database). Damage that
     leaves every page and value well-formed (a changed digit inside a plausible number) is not
-    detectable: SQLite keeps no checksums. Returns whether it holds our tables (False: missing,
-    empty or new)."""
+    detectable: SQLite keeps no checksums. With ``trust_wal``, a main file shorter than its
+    header says while its ``-wal`` holds frames (:func:`size_problem_in_wal`) is checked
+    through the WAL by SQLite instead of refused by the header's count. Returns whether it
+    holds our tables (False: missing, empty or new)."""
     path = Path(path)
     try:
         info = path.stat()
@@ -145,7 +179,7 @@ def check_file(
     with path.open("rb") as handle:
         header = handle.read(100)
     problem = header_problem(header, size)
-    if problem:
+    if problem and not (trust_wal and size_problem_in_wal(path, problem)):
         raise damaged(path, problem)
     check = "integrity_check" if size <= FULL_CHECK_BYTES else "quick_check"
     found: tuple[list[str], dict[str, list[str]]] | sqlite3.DatabaseError

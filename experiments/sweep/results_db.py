@@ -44,7 +44,13 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
-from experiments.database_file import check_file, header_problem, open_read_only, table_columns
+from experiments.database_file import (
+    check_file,
+    header_problem,
+    open_read_only,
+    size_problem_in_wal,
+    table_columns,
+)
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignSpace
 from feeders.feeder import ORIENTATIONS
 
@@ -172,6 +178,30 @@ def damaged(path: str | Path, problem: str) -> ResultsDamaged:
     )
 
 
+MAX_META_BYTES = 4 << 20  # a stored config or family record (a family file is at most 1 MiB)
+
+
+def _stored_family_problem(
+    family: dict[str, Any], parameters: tuple[str, ...], entries: tuple[str, ...]
+) -> str | None:
+    """Why the stored family record's text is not the family the database's columns say
+    (read by the one bounded reader, :func:`experiments.family_config.family_of_text`: a
+    report rebuilds the family from it), or None."""
+    from experiments.family_config import family_of_text
+    from feeders.fields import FieldError
+
+    text, name = family.get("yaml"), family.get("name")
+    if not isinstance(text, str) or not isinstance(name, str):
+        return "meta: the stored family has no text"
+    try:
+        rebuilt = family_of_text(text, name)
+    except FieldError as exc:
+        return f"meta: the stored family's text cannot be read ({str(exc)[:300]})"
+    if rebuilt.vector_names != parameters or tuple(n for n, _ in rebuilt.entries) != entries:
+        return "meta: the stored family's text is not the family of the stored parameters"
+    return None
+
+
 def _content_problem(db: sqlite3.Connection) -> str | None:
     """What in the stored rows cannot have been written by this module (damage inside a data
     page that leaves the pages well-formed): text that is not UTF-8, a config that is not
@@ -181,6 +211,11 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
     from experiments.names import RUNG_NAMES
     from feeders.halton import halton_points
 
+    long = db.execute(
+        "SELECT key FROM meta WHERE length(CAST(value AS BLOB)) > ? LIMIT 1", (MAX_META_BYTES,)
+    ).fetchone()
+    if long is not None:  # never loaded: a config or family is a few kilobytes
+        return f"meta: a stored value is larger than {MAX_META_BYTES} bytes"
     db.text_factory = bytes  # decode here, to name the column
     try:
         meta = {}
@@ -199,6 +234,10 @@ def _content_problem(db: sqlite3.Connection) -> str | None:
         db.text_factory = str
     if table_columns(db)["designs"][2:] != list(parameters):
         return "designs: the parameter columns are not those of the sweep's family"
+    if family is not None:
+        problem = _stored_family_problem(family, parameters, entries)
+        if problem:
+            return problem
     quoted = ", ".join(f'"{name}"' for name in parameters)
     stored = db.execute(
         f"SELECT design_id, holdout, {quoted} FROM designs ORDER BY design_id"
@@ -333,6 +372,7 @@ def check_database(path: str | Path) -> bool:
         "results database",
         added_later={"verdicts"},
         content_problem=_content_problem,
+        trust_wal=True,  # after a full disk its rows may sit in its WAL: read through it
     )
 
 
@@ -345,8 +385,9 @@ def _stored_parameters(path: Path) -> tuple[str, ...]:
         if not stat.S_ISREG(info.st_mode) or info.st_size == 0:
             return PARAMETER_NAMES
         with path.open("rb") as handle:
-            if header_problem(handle.read(100), info.st_size):
-                return PARAMETER_NAMES
+            problem = header_problem(handle.read(100), info.st_size)
+        if problem and not size_problem_in_wal(path, problem):
+            return PARAMETER_NAMES
         db = open_read_only(path)
         try:
             columns = table_columns(db).get("designs") or []
@@ -383,8 +424,19 @@ def connect(
         db.execute("PRAGMA synchronous=NORMAL")  # durable against a killed process
         db.executescript(schema(parameters))
         _allow_every_status(db)
+        _complete_checkpoint(db, path)
     db.row_factory = sqlite3.Row
     return db
+
+
+def _complete_checkpoint(db: sqlite3.Connection, path: Path) -> None:
+    """A database left by a full disk in the middle of a checkpoint (its main file shorter
+    than its header says, every page in its WAL) is checkpointed now, so the main file is
+    whole again before the run goes on."""
+    with path.open("rb") as handle:
+        problem = header_problem(handle.read(100), path.stat().st_size)
+    if problem:
+        db.execute("PRAGMA wal_checkpoint(TRUNCATE)")
 
 
 def _allow_every_status(db: sqlite3.Connection) -> None:

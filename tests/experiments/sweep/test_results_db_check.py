@@ -132,3 +132,117 @@ def test_report_refuses_a_sweep_whose_stored_ompl_log_is_not_text(tmp_path: Path
     assert f"results database '{path}'" in err
     assert "design 1, level geometric, heavy_leading" in err
     assert directory_state(path.parent) == before
+
+
+FIG1 = Path(__file__).resolve().parents[3] / "feeders" / "families" / "fig1.yaml"
+
+
+def _family_database(directory: Path, text: str) -> Path:
+    """A family sweep's database whose stored family text is ``text``."""
+    from experiments.family_config import family_record
+    from feeders.device_family import load_family
+
+    family = load_family(FIG1)
+    directory.mkdir()
+    path = directory / "results.sqlite"
+    db = results_db.connect(path, parameters=family.vector_names)
+    try:
+        config = {"designs": {"count": 1, "seed": 1}, "ladder": []}
+        results_db.claim(db, config, "k", family_record(family, text))
+    finally:
+        db.close()
+    return path
+
+
+@pytest.mark.parametrize(
+    "kind",
+    ["repeated key", "alias bomb", "deep nesting", "oversized", "another family"],
+)
+def test_a_database_storing_a_family_text_the_reader_refuses_is_refused(
+    tmp_path: Path, kind: str, capsys
+) -> None:
+    """Issue 37, item 3: the stored text was rebuilt with an unbounded loader (an alias bomb
+    took ``report`` to 2.49 GB and a MemoryError). The check reads it with the bounded
+    reader, and a text that is not the stored parameters' family is refused too."""
+    import time
+
+    text = FIG1.read_text()
+    hostile = {
+        "repeated key": text + "name: again\n",
+        "alias bomb": "a: &a [x, x, x, x, x, x, x, x, x]\n"
+        + "".join(
+            f"{c}: &{c} [{', '.join(['*' + p] * 9)}]\n" for p, c in zip("ab", "bc", strict=True)
+        )
+        + "name: *c\n",
+        "deep nesting": "parameters: " + "[" * 3000 + "]" * 3000 + "\n",
+        "oversized": text + "#" * (2 << 20) + "\n",
+        "another family": text.replace("pin_r", "pin_radius"),
+    }[kind]
+    path = _family_database(tmp_path / "sweep", hostile)
+    before = directory_state(path.parent)
+    start = time.perf_counter()
+    with pytest.raises(results_db.ResultsDamaged, match="meta: the stored family"):
+        results_db.check_database(path)
+    assert run(["report", str(path.parent)]) == 2
+    assert time.perf_counter() - start < 60  # seconds; it was 142 s (generous: loaded machine)
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+    assert f"results database '{path}'" in err and "meta: the stored family" in err
+    assert directory_state(path.parent) == before
+
+
+def _wal_copy(directory: Path, rows: int) -> tuple[Path, list[tuple]]:
+    """A database as a full disk leaves it mid-checkpoint: its rows committed in its ``-wal``,
+    the main file's page 1 (the header counting every page) written, the pages after it not.
+    Made from the files of a connection that has not checkpointed, copied, with the header
+    page of the checkpointed file written over the copy's first page."""
+    import shutil
+
+    source = directory / "source"
+    path = sweep_database(source)
+    db = sqlite3.connect(path)
+    db.execute("PRAGMA wal_autocheckpoint=0")
+    with db:
+        db.executemany(
+            "INSERT INTO meta VALUES (?, ?)", [(f"k{i}", "x" * 3000) for i in range(rows)]
+        )
+    copy = directory / "sweep"
+    copy.mkdir()
+    for suffix in ("", "-wal"):
+        shutil.copyfile(str(path) + suffix, str(copy / "results.sqlite") + suffix)
+    db.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    expected = db.execute("SELECT key, value FROM meta ORDER BY key").fetchall()
+    page = db.execute("PRAGMA page_size").fetchone()[0]
+    db.close()
+    first = path.read_bytes()[:page]
+    target = copy / "results.sqlite"
+    data = target.read_bytes()
+    target.write_bytes(first + data[page:])
+    assert path.stat().st_size > target.stat().st_size  # the header counts pages not there
+    return target, expected
+
+
+def test_a_database_whose_rows_sit_in_its_wal_is_resumed_not_called_truncated(
+    tmp_path: Path,
+) -> None:
+    """Issue 37, item 4: after a full disk the check compared the main file's size with its
+    header, ignoring the WAL, and told the user to delete a database SQLite could read
+    whole. Read through the WAL, it passes; opened for writing it is checkpointed whole."""
+    from experiments.database_file import header_problem
+
+    path, expected = _wal_copy(tmp_path, rows=40)
+    with path.open("rb") as handle:
+        assert "truncated" in (header_problem(handle.read(100), path.stat().st_size) or "")
+    assert results_db.check_database(path) is True
+    db = results_db.connect(path, readonly=True)
+    got = db.execute("SELECT key, value FROM meta ORDER BY key").fetchall()
+    assert [tuple(row) for row in got] == expected
+    db.close()
+    db = results_db.connect(path)  # the resumed run: checkpointed, the file whole again
+    db.close()
+    with path.open("rb") as handle:
+        assert header_problem(handle.read(100), path.stat().st_size) is None
+    again = sqlite3.connect(path)
+    assert again.execute("SELECT key, value FROM meta ORDER BY key").fetchall() == expected
+    assert again.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+    again.close()
