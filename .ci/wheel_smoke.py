@@ -64,6 +64,10 @@ SHORTER: dict[str, tuple[str, str]] = {
         "partfeeder optimize optimize-short.yaml --from sweep/default --out optimize/optimize",
         "~3 min, no budget flag: the shipped config with 32 evaluations, 20 final trials",
     ),
+    "partfeeder optimize robust --from sweep/default": (
+        "partfeeder optimize robust-short.yaml --from sweep/default --out optimize/robust",
+        "~5 min: the shipped robust config with 2 margins evaluations, 20 final trials",
+    ),
     "partfeeder feasibility --designs 500 --levels kinematic,geometric --out feas": (
         "partfeeder feasibility --designs 6 --levels kinematic,geometric --out feas",
         "minutes: 6 of the 500 designs",
@@ -97,6 +101,10 @@ CONFIGS: dict[str, tuple[str, list[tuple[str, str]]]] = {
     "optimize-short.yaml": (
         "optimize.yaml",
         [(r"budget: \d+", "budget: 32"), (r"^final: \{trials: \d+", "final: {trials: 20")],
+    ),
+    "robust-short.yaml": (
+        "robust.yaml",
+        [(r"budget: \d+", "budget: 2"), (r"^final: \{trials: \d+", "final: {trials: 20")],
     ),
     "fig1-cup-short.yaml": (
         "fig1-cup-optimize.yaml",

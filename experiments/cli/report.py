@@ -209,6 +209,13 @@ def finish(
         recommended = recommendation_line(summary.get("recommendation"))
         if recommended is not None:
             print(recommended)
+        cost = (summary.get("recommendation") or {}).get("margins_cost")
+        if cost:
+            print(
+                f"margins: {cost['designs']} designs (the confirmed ones and the baseline), "
+                f"{cost['trials']} trials ({cost['drops']} drops) in "
+                f"{cost['wall_time_s']:.1f} s"
+            )
         if "wall_time_s" in summary:
             print(f"wall time: {summary['wall_time_s']:.1f} s")
         for name, path in files.items():

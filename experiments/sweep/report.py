@@ -131,6 +131,8 @@ def report_with_findings(
     if margins and comparison is not None and "absent" not in comparison:
         contenders = margins_of_contenders(summary, Path(db_path), comparison, workers, progress)
     recommendation = recommendation_of(summary, comparison, contenders)
+    if contenders:
+        recommendation["margins_cost"] = margins_cost(contenders)
     margins_data = baseline_margins = None
     if contenders and recommendation["confirmed"]:
         label = recommendation["label"]
@@ -164,6 +166,18 @@ def report_with_findings(
     partial.write_text(html_page(shown, ladder, figures, Path(db_path)), encoding="utf-8")
     os.replace(partial, page)
     return page, findings
+
+
+def margins_cost(margins: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    """What measuring ``margins`` (per label) cost in all: designs, trials (a perturbed made
+    device dropped from every entry), drops and the wall time of the one pool (s)."""
+    costs = [m.get("cost") or {} for m in margins.values()]
+    return {
+        "designs": len(margins),
+        "trials": sum(int(c.get("trials") or 0) for c in costs),
+        "drops": sum(int(c.get("drops") or 0) for c in costs),
+        "wall_time_s": max((float(c.get("wall_time_s") or 0.0) for c in costs), default=0.0),
+    }
 
 
 def _environment(summary: dict) -> dict[str, Any]:
