@@ -356,6 +356,8 @@ def search(
     full rule at both, the search going on wherever that contradicts a look. Values are
     passed on looks of ``look`` successes; the ends reported have the full rule over
     ``trials.drops`` trials. Every value estimated lies between the nominal and the edge."""
+    if look < 1:
+        raise ValueError(f"a look needs at least one success, not {look}")
     side = _Side(trials, nominal, edge)
     far, tol, n = side.far, resolution * width, trials.drops
     near = NEAR * width
@@ -404,6 +406,8 @@ def search(
 def nominal_estimate(trials: Trials, nominal: float, look: int = LOOK) -> Estimate:
     """The nominal value's look: its trials in draw order until ``look`` successes, and at
     the first failure the full rule (outside: the axis has no margin)."""
+    if look < 1:
+        raise ValueError(f"a look needs at least one success, not {look}")
     side = _Side(trials, nominal, nominal)
     for index in range(trials.drops):
         s, f = side.counts(nominal)

@@ -353,3 +353,11 @@ def test_on_full_estimates_the_ends_are_those_of_the_search_before(curve, seed):
     result = bracket(evaluate, nominal, 1.0, 1.0, TARGET)
     outside = None if result.outside is None else result.outside.value
     assert (result.limit, outside) == doubling_then_bisection(evaluate, nominal, 1.0, 1.0)
+
+
+def test_a_look_of_no_trial_is_refused():
+    trials = Sampler(lambda v, i: True, DROPS, TARGET)
+    with pytest.raises(ValueError, match="at least one"):
+        nominal_estimate(trials, 0.0, look=0)
+    with pytest.raises(ValueError, match="at least one"):
+        search(trials, 0.0, 1.0, 1.0, look=0)
