@@ -6,6 +6,7 @@ API); here its errors become one-line usage errors."""
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -103,6 +104,7 @@ def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFam
     """The family ``--family`` names and the design ``--values`` gives (its defaults without
     them), checked: UsageError naming the file and field, or ``--values``."""
     from feeders.device_family import FamilyError, load_family
+    from feeders.fields import shown
 
     try:
         family = load_family(family_path(family_file))
@@ -115,7 +117,7 @@ def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFam
         vector = [float(v) for v in values.split(",")]
     except ValueError:
         raise UsageError(
-            f"--values = '{values}': expected {len(names)} comma-separated numbers "
+            f"--values = '{shown(values)}': expected {len(names)} comma-separated numbers "
             f"({', '.join(names)})"
         ) from None
     if len(vector) != len(names):
@@ -123,6 +125,12 @@ def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFam
             f"--values: {len(vector)} numbers given; the family {family.name} has "
             f"{len(names)} parameters: {', '.join(names)}"
         )
+    for name, value in zip(names, vector, strict=True):
+        if not math.isfinite(value):  # nan, inf, 1e999: nothing a simulation can make
+            raise UsageError(
+                f"--values: {name} = {value} is not a finite number; every value must be "
+                "finite (a value outside the family's box is allowed)"
+            )
     return family, vector
 
 

@@ -107,3 +107,71 @@ def test_the_division_by_zero_is_named_with_its_field_and_values(tmp_path: Path)
     path.write_text(yaml.safe_dump(data, sort_keys=False))
     line = run_cli("simulate", "--family", str(path), timeout=300).stderr.strip()
     assert "pieces[11].disc.radius" in line and "division by zero" in line and "theta" in line
+
+
+# issue 37, item 5: a value that reaches a simulation is checked for finiteness at the CLI
+@pytest.mark.parametrize("command", ["simulate", "draw", "plan"])
+@pytest.mark.parametrize("bad", ["nan", "inf", "-inf", "1e999"])
+def test_values_that_are_not_finite_are_one_line_and_exit_2(
+    tmp_path: Path, command: str, bad: str, capsys: pytest.CaptureFixture
+) -> None:
+    from experiments.cli import run
+
+    values = f"0.5,1.2,1.2,{bad},1.4,0.25"
+    extra = ["--out", str(tmp_path / "out.png")] if command == "draw" else []
+    assert run([command, "--family", "fig1", "--values", values, *extra]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert "--values" in err and "pin_x" in err and "finite" in err
+    assert not (tmp_path / "out.png").exists()
+
+
+# issue 37, item 7: a file of another kind given as a config or family: its keys not echoed
+@pytest.mark.parametrize("given", ["run", "simulate --family", "run family:"])
+def test_an_unrelated_file_of_key_value_lines_is_named_not_quoted(
+    tmp_path: Path, given: str, capsys: pytest.CaptureFixture
+) -> None:
+    from experiments.cli import run
+
+    secret = tmp_path / "credentials"
+    secret.write_text("aws_secret_access_key: SECRETVALUE\nsession_token_name: SECRETKEY2\n")
+    if given == "run":
+        argv = ["run", str(secret), "--out", str(tmp_path / "out")]
+    elif given == "simulate --family":
+        argv = ["simulate", "--family", str(secret)]
+    else:
+        config = tmp_path / "sweep.yaml"
+        config.write_text(f"name: s\nfamily: {secret}\n")
+        argv = ["run", str(config), "--out", str(tmp_path / "out")]
+    assert run(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert "credentials" in err
+    for word in ("aws_secret", "SECRET", "session_token"):
+        assert word not in err, err
+
+
+# issue 37, item 8
+def test_draw_refuses_to_write_its_picture_over_the_family_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    from experiments.cli import run
+
+    family = tmp_path / "fig1.svg"  # a family file whose name is a picture's
+    family.write_text(yaml.safe_dump(FIG1))
+    before = family.read_bytes()
+    assert run(["draw", "--family", str(family), "--out", str(family)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "is the input file" in err
+    assert family.read_bytes() == before
+
+
+def test_a_refused_draw_leaves_no_out_directory(tmp_path: Path, capsys) -> None:
+    from experiments.cli import run
+
+    out = tmp_path / "new" / "deeper" / "pic.png"
+    assert run(["draw", "--family", "fig1", "--values", "1,2", "--out", str(out)]) == 2
+    assert not (tmp_path / "new").exists()
+    assert run(["draw", "--family", str(tmp_path / "nowhere.yaml"), "--out", str(out)]) == 2
+    assert not (tmp_path / "new").exists()
+    assert capsys.readouterr().err.count("\n") == 2
