@@ -125,13 +125,30 @@ def name_field(value: Any, field: str = "name") -> str:
     return name
 
 
+# the fields that are a whole document (a config, a family, a scene, a stress case): a file
+# of which not one key is allowed is of another kind, and its keys are not echoed
+DOCUMENT_FIELDS = frozenset({"config", "family", "scene", "stress case"})
+MAX_UNKNOWN_SHOWN = 5  # unknown keys named in a message
+
+
 def mapping_field(value: Any, field: str, allowed: set[str]) -> dict[str, Any]:
     """``value`` as a mapping whose keys are all in ``allowed``."""
     if not isinstance(value, dict):
         raise FieldError(f"{field}: expected a mapping, got {shown_value(value)}")
     unknown = sorted(map(str, set(value) - allowed))
+    if unknown and len(unknown) == len(value) and field in DOCUMENT_FIELDS:
+        # not one field of the kind: another kind of file (credentials, another program's
+        # settings), whose keys are its content: named, never quoted (issue 37)
+        raise FieldError(
+            f"{field}: none of its {len(value)} keys is a field of a {field} (not quoted: is "
+            f"this the right file?); allowed: {sorted(allowed)}"
+        )
     if unknown:
-        raise FieldError(f"{field}: unknown key(s) {shown(unknown)}; allowed: {sorted(allowed)}")
+        named = [shown_value(key) for key in unknown[:MAX_UNKNOWN_SHOWN]]
+        more = f" and {len(unknown) - len(named)} more" if len(unknown) > len(named) else ""
+        raise FieldError(
+            f"{field}: unknown key(s) [{', '.join(named)}]{more}; allowed: {sorted(allowed)}"
+        )
     return value
 
 
