@@ -54,20 +54,31 @@ def family_baseline_of(text: str | None, family: DeviceFamily) -> tuple[str, lis
     is allowed, or why those values cannot be built."""
     from experiments.family_config import FAMILY_DEFAULT, family_default
     from feeders.feeder import DegenerateDesign
+    from feeders.fields import shown
 
     if text in (None, FAMILY_DEFAULT):
         return family_default(family)
     names = family.vector_names
-    values = _numbers(str(text))
+    values = _numbers(str(text), finite=False)
+    if values is not None and len(values) == len(names):
+        for name, value in zip(names, values, strict=True):
+            if not math.isfinite(value):
+                raise UsageError(
+                    f"--baseline: {name} = {value} is not a finite number; every value must "
+                    "be finite"
+                )
     if values is None or len(values) != len(names):
         raise UsageError(
-            f"--baseline = '{text}'; allowed with family {family.name}: {FAMILY_DEFAULT}, or "
+            f"--baseline = '{shown(str(text))}'; allowed with family {family.name}: "
+            f"{FAMILY_DEFAULT}, or "
             f"{len(names)} comma-separated numbers ({', '.join(names)})"
         )
     try:
         family.build(values)
     except DegenerateDesign as exc:
-        raise UsageError(f"--baseline = '{text}' cannot be built: {exc.reason}") from None
+        raise UsageError(
+            f"--baseline = '{shown(str(text))}' cannot be built: {exc.reason}"
+        ) from None
     return "baseline", values
 
 
@@ -85,13 +96,21 @@ def check_baseline_form(text: str | None) -> None:
 
     if text in (None, FAMILY_DEFAULT) or ("," in str(text) and _numbers(str(text))):
         return
+    numbers = _numbers(str(text), finite=False) if "," in str(text) else None
+    for k, value in enumerate(numbers or [], start=1):
+        if not math.isfinite(value):  # said so, not as a wrong count of values (issue 37)
+            raise UsageError(
+                f"--baseline: value {k} = {value} is not a finite number; every value must "
+                "be finite"
+            )
     baseline_of(text)
 
 
-def _numbers(text: str) -> list[float] | None:
-    """The comma-separated finite numbers of ``text``, or None when it is not such a list."""
+def _numbers(text: str, finite: bool = True) -> list[float] | None:
+    """The comma-separated (finite, unless not ``finite``) numbers of ``text``, or None when
+    it is not such a list."""
     try:
         values = [float(v) for v in text.split(",")]
     except ValueError:
         return None
-    return values if all(math.isfinite(v) for v in values) else None
+    return values if not finite or all(math.isfinite(v) for v in values) else None

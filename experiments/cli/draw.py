@@ -18,8 +18,18 @@ def add_arguments(draw: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """The design and ``--out`` are checked before matplotlib is imported."""
-    out = out_file(args.out, inputs=[args.scene] if args.scene else [])
-    scene = load_scene(args.design, args.scene, args.family, args.values)
+    inputs = [p for p in (args.scene, args.family) if p is not None]
+    missing = [d for d in (args.out.parent, *args.out.parent.parents) if not d.exists()]
+    out = out_file(args.out, inputs=inputs)  # never the scene or family file itself
+    try:
+        scene = load_scene(args.design, args.scene, args.family, args.values)
+    except BaseException:  # refused: the directories made for --out go again (if empty)
+        for directory in missing:  # deepest first
+            try:
+                directory.rmdir()
+            except OSError:
+                break
+        raise
     from experiments.pictures.scenes import scene_figure
 
     print(scene_figure([scene], [scene.name], out))

@@ -80,3 +80,26 @@ def test_a_baseline_some_design_could_be_passes_the_first_check(text: str | None
 def test_a_baseline_no_design_could_be_is_refused_at_once(text: str) -> None:
     with pytest.raises(UsageError, match=r"^--baseline"):
         check_baseline_form(text)
+
+
+def test_a_family_baseline_that_is_not_finite_is_called_so_not_a_wrong_count() -> None:
+    """Issue 37, item 8: a NaN --baseline on a family sweep was reported as a wrong count."""
+    from experiments.cli.baseline import family_baseline_of
+    from experiments.cli.usage import UsageError
+    from feeders.device_family import load_family, packaged_family
+
+    family = load_family(packaged_family("fig1"))
+    for bad in ("nan", "inf", "1e999"):
+        with pytest.raises(UsageError) as caught:
+            family_baseline_of(f"0.5,1.2,1.2,{bad},1.4,0.25", family)
+        message = str(caught.value)
+        assert "pin_x" in message and "not a finite number" in message, message
+        assert "comma-separated numbers (" not in message
+
+
+def test_a_baseline_that_is_not_finite_is_refused_at_once_as_such() -> None:
+    from experiments.cli.baseline import check_baseline_form
+    from experiments.cli.usage import UsageError
+
+    with pytest.raises(UsageError, match=r"^--baseline: value 4 = nan is not a finite number"):
+        check_baseline_form("0.5,1.2,1.2,nan,1.4,0.25")
