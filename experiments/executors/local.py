@@ -18,6 +18,7 @@ from __future__ import annotations
 import functools
 import os
 import signal
+import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -75,10 +76,37 @@ def _run_alone(evaluate: Evaluate, job: Job, start: Callable[[], None]) -> tuple
         outcome = receive.recv()
     except EOFError:
         outcome = None
+    except BaseException:  # a stop request: the job is not waited for
+        process.terminate()
+        process.join(STOP_GRACE_S)
+        if process.is_alive():
+            process.kill()
+        raise
     process.join()
     if outcome is None:
         return "died", _death(process.exitcode)
     return outcome
+
+
+STOP_GRACE_S = 2.0  # after SIGTERM, how long a worker may take to end before SIGKILL
+
+
+def stop_pool(pool: ProcessPoolExecutor) -> None:
+    """End ``pool`` now: its queued jobs cancelled, its workers terminated (SIGTERM, then
+    SIGKILL after ``STOP_GRACE_S``), without waiting for the jobs in flight (a verdict's
+    batch can run half a minute; a batch scheduler's grace period is often 30 s). What the
+    caller stored of finished jobs is kept; a job cut short is run again on resume."""
+    processes = list(getattr(pool, "_processes", {}).values())  # the executor's own table
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    deadline = time.monotonic() + STOP_GRACE_S
+    for process in processes:
+        process.join(max(0.0, deadline - time.monotonic()))
+        if process.is_alive():
+            process.kill()
+            process.join(1.0)
 
 
 class LocalPool:
@@ -107,9 +135,12 @@ class LocalPool:
         self._pool = self._new_pool()
         return self
 
-    def __exit__(self, *exc: object) -> None:
+    def __exit__(self, exc_type: type[BaseException] | None, *exc: object) -> None:
         if self._pool is not None:
-            self._pool.shutdown(wait=True, cancel_futures=True)
+            if exc_type is None:
+                self._pool.shutdown(wait=True, cancel_futures=True)
+            else:  # a stop request (Ctrl-C, SIGTERM) or a failure: do not wait for the jobs
+                stop_pool(self._pool)
             self._pool = None
 
     def _new_pool(self) -> ProcessPoolExecutor:
