@@ -7,13 +7,15 @@ verdict :func:`experiments.drop.family_verdict.family_verdict`)."""
 
 from __future__ import annotations
 
+import contextlib
+import math
 import time
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 from experiments.drop.family_verdict import family_verdict
 from experiments.drop.verdict import Verdict, design_verdict
-from experiments.executors.local import map_jobs
 from experiments.margins.axes import Axis, axes, family_axes
 from experiments.margins.measure import (
     AxisJob,
@@ -45,10 +47,12 @@ class MarginsReport:
     margins: tuple[AxisMargin, ...]
     wall_time: float
     workers: int
+    stopped: str | None = None  # why the axes after ``margins`` were not measured
+    wasted: int = 0  # trials of axes that were running when it stopped, not in ``margins``
 
     @property
     def trials(self) -> int:
-        return len(self.verdict.trials) + sum(m.drops for m in self.margins)
+        return len(self.verdict.trials) + sum(m.drops for m in self.margins) + self.wasted
 
     def to_dict(self) -> dict:
         s = self.subject
@@ -102,8 +106,10 @@ class MarginsReport:
             "search": {
                 "first_step": FIRST_STEP,
                 "resolution": RESOLUTION,
+                "look": self.settings.look,
                 "unit": "fraction of the box's width",
             },
+            "stopped": self.stopped,
             "meaning": MEANING,
             "verdict": verdict,
             "works": self.verdict.works,
@@ -162,45 +168,122 @@ def margins_of(
     return margins_of_each({"": subject}, settings, workers, on_axis, kinds)[""]
 
 
+Stop = Callable[[str, Mapping[str, dict]], str | None]
+
+
 def margins_of_each(
     subjects: Mapping[str, MarginSubject],
     settings: MarginSettings,
     workers: int = 1,
     on_axis: Callable[[AxisMargin], object] | None = None,
     kinds: Collection[str] | None = None,
+    stop: Stop | None = None,
 ) -> dict[str, MarginsReport]:
-    """:func:`margins_of` for several designs by label, every axis of every design that works
-    in one pool (the workers stay busy across designs); each report's wall time is the
-    whole call's."""
+    """:func:`margins_of` for several designs by label, in one pool that stays warm across
+    them, one design after the other in the order given (each one's axes on every worker);
+    from the second design on, the axes the first found tightest go first. ``stop(label,
+    so_far)`` is asked after each axis of a design other than the first (in the order the
+    axes were handed out, so the answer does not depend on which worker was faster;
+    ``so_far``: the reports of the designs before it and of this one so far, by label, as
+    :meth:`MarginsReport.to_dict`); a reason it returns ends that design: its report holds
+    the axes judged before, says why in ``stopped``, and counts in its cost the trials of
+    axes that were already running. Each report's wall time is the whole call's."""
     t0 = time.perf_counter()
-    verdicts = {label: design_verdict_of(s, settings) for label, s in subjects.items()}
-    jobs: list[AxisJob] = []
-    owners: list[str] = []
-    for label, subject in subjects.items():
-        if verdicts[label].works:
-            for axis in axes_of(subject, kinds):
-                jobs.append(AxisJob(subject, axis, settings))
-                owners.append(label)
-    found = (
-        map_jobs(
-            measure_axis,
-            jobs,
-            workers,
-            on_result=None if on_axis is None else lambda _i, m: on_axis(m),
-            ompl=False,
-        )
-        if jobs
-        else []
-    )
-    wall = time.perf_counter() - t0
-    return {
-        label: MarginsReport(
-            subject,
+    labels = list(subjects)
+    verdicts = {label: design_verdict_of(subjects[label], settings) for label in labels}
+    done: dict[str, list[AxisMargin]] = {label: [] for label in labels}
+    wasted: dict[str, int] = dict.fromkeys(labels, 0)
+    stopped: dict[str, str | None] = dict.fromkeys(labels)
+
+    def report(label: str) -> MarginsReport:
+        return MarginsReport(
+            subjects[label],
             settings,
             verdicts[label],
-            tuple(m for m, owner in zip(found, owners, strict=True) if owner == label),
-            wall,
+            tuple(done[label]),
+            time.perf_counter() - t0,
             workers,
+            stopped[label],
+            wasted[label],
         )
-        for label, subject in subjects.items()
-    }
+
+    def axes_in_order(k: int) -> list[Axis]:
+        axes = list(axes_of(subjects[labels[k]], kinds)) if verdicts[labels[k]].works else []
+        if k == 0 or not done[labels[0]]:
+            return axes
+        from experiments.margins.robustness import SIDES, at_edge, room
+
+        rooms = {}  # the first design's smallest room inside the box, per axis
+        for row in report(labels[0]).to_dict()["margins"]:
+            r = room(row)
+            if r is None:
+                rooms[row["parameter"]] = -1.0
+                continue
+            inside = [x for x, side in zip(r, SIDES, strict=True) if not at_edge(row, side)]
+            rooms[row["parameter"]] = min(inside, default=math.inf)
+        return sorted(axes, key=lambda a: rooms.get(a.name, math.inf))  # stable: ties keep order
+
+    def judged(label: str, margin: AxisMargin, first: bool) -> bool:
+        """Take one axis's margin in hand-out order; False once the design is stopped."""
+        if stopped[label] is not None:
+            wasted[label] += margin.drops
+            return False
+        done[label].append(margin)
+        if on_axis is not None:
+            on_axis(margin)
+        if stop is not None and not first:
+            so_far = {lb: report(lb).to_dict() for lb in labels if done[lb] or lb == label}
+            stopped[label] = stop(label, so_far)
+        return stopped[label] is None
+
+    pool = None
+    if workers > 1:
+        from experiments.executors.local import LocalPool
+
+        pool = LocalPool(workers, 1, None, False)
+    with pool if pool is not None else contextlib.nullcontext():
+        for k, label in enumerate(labels):
+            jobs = [AxisJob(subjects[label], axis, settings) for axis in axes_in_order(k)]
+            if pool is None:
+                for job in jobs:
+                    if not judged(label, measure_axis(job), k == 0):
+                        break
+                continue
+            _in_order(pool, jobs, lambda margin, k=k, label=label: judged(label, margin, k == 0))
+    for label in labels:  # the designs' axes in their usual order
+        order = {a.name: i for i, a in enumerate(axes_of(subjects[label], kinds))}
+        done[label].sort(key=lambda m: order[m.axis.name])
+    return {label: report(label) for label in labels}
+
+
+def _in_order(pool: Any, jobs: list[AxisJob], take: Callable[[AxisMargin], bool]) -> None:
+    """Run ``jobs`` on ``pool``, handing each result to ``take`` in the jobs' order (later
+    ones wait for earlier ones); once ``take`` says False, no job is handed out again, and
+    the results of those already running go to ``take`` too (it counts them)."""
+    from experiments.executors.local import JobFailed
+
+    results: dict[int, AxisMargin] = {}
+    queue = iter(enumerate(jobs))
+    state = {"next": 0, "open": True}
+
+    def hand_out() -> list[tuple[int, AxisJob]]:
+        item = next(queue, None) if state["open"] else None
+        return [] if item is None else [item]
+
+    def on_done(item: tuple[int, AxisJob], margin: AxisMargin, _attempts: int) -> list:
+        results[item[0]] = margin
+        while state["next"] in results:
+            state["open"] = take(results.pop(state["next"])) and state["open"]
+            state["next"] += 1
+        return hand_out()
+
+    def failed(item: tuple[int, AxisJob], _attempts: int, reason: str) -> None:
+        raise JobFailed(item[0], f"axis {item[1].axis.name}: {reason}")
+
+    first = [item for _ in range(pool.workers) for item in hand_out()]
+    if first:
+        pool.run(_indexed_axis, first, on_done, failed)
+
+
+def _indexed_axis(item: tuple[int, AxisJob]) -> AxisMargin:
+    return measure_axis(item[1])

@@ -53,6 +53,11 @@ def robustness_sentence(margins: dict[str, Any], baseline: dict[str, Any] | None
             return f"{m.get('design')}: every side reaches the box's edge"
         where = f"{r.axis} {r.side}" if r.side else f"{r.axis} has no margin"
         low, high = r.bracket
+        if m.get("stopped"):  # measured until it could not be the most robust
+            return (
+                f"{m.get('design')}: at most {100 * high:.1f}% of its box ({where}; its "
+                f"other axes not measured: {m['stopped']})"
+            )
         top = "" if math.isinf(high) else f", between {100 * low:.1f}% and {100 * high:.1f}%"
         return f"{m.get('design')}: {100 * r.value:.1f}% of its box ({where}{top})"
 

@@ -142,10 +142,14 @@ def reliability(entry: dict[str, Any]) -> dict[str, Any]:
     }
 
 
-def _percent(r: Robustness) -> str:
+def _percent(r: Robustness, margins: dict[str, Any] | None = None) -> str:
+    """A design's robustness in words; "at most" for a design whose margins were stopped
+    (:func:`outranked`: its bracket's top is what was shown)."""
     if r.unlimited:
         return "unlimited within the box"
     where = f" ({r.axis} {r.side})" if r.side else f" ({r.axis}: no margin)" if r.axis else ""
+    if margins and margins.get("stopped"):
+        return f"at most {100.0 * r.bracket[1]:.1f}%{where}"
     return f"{100.0 * r.value:.1f}%{where}"
 
 
@@ -177,6 +181,7 @@ def robust_choice(
         confirmed,
         key=lambda label: (
             not reliable[label]["better"],
+            (margins.get(label) or {}).get("stopped") is not None,  # outranked while measured
             -robust.get(label, zero).value,
             confirmed.index(label),
         ),
@@ -190,7 +195,10 @@ def robust_choice(
         f"on the same {rel['draws']} draws {best} succeeded alone on {d_only} and {name} alone "
         f"on {b_only} (paired exact test, one-sided p = {rel['p_better']:.3g})"
     )
-    robust_text = f"smallest margin {_percent(mine)} of its box against {name}'s {_percent(theirs)}"
+    robust_text = (
+        f"smallest margin {_percent(mine, margins.get(best))} of its box against {name}'s "
+        f"{_percent(theirs, margins.get(name))}"
+    )
     if not base_confirmed:
         decision, why = BUILD, f"{name} is not confirmed on the same draws; {robust_text}"
     elif rel["better"]:
@@ -287,6 +295,7 @@ def margins_of_contenders(
     confirmed = [d for d in comparison["designs"] if _confirmed(d, comparison)]
     if not confirmed:
         return None
+    # the baseline first (its margins are shown in any case), then in the fresh ranking's order
     subjects = {
         str(d["label"]): margin_subject(summary, db_path, list(d["values"]), str(d["label"]))
         for d in [comparison["baseline"], *confirmed]
@@ -306,6 +315,7 @@ def margins_of_contenders(
     if progress is not None:
         axes = sum(len(axes_of(s, kinds)) for s in subjects.values())
         progress("margins", {"design": ", ".join(subjects), "axes": axes})
+    protected = {str(d["label"]) for d in confirmed if reliability(d)["better"]}
     reports = margins_of_each(
         subjects,
         margin_settings,
@@ -314,8 +324,30 @@ def margins_of_contenders(
         if progress is None
         else lambda margin: progress("axis", {"parameter": margin.axis.name}),
         kinds=kinds,
+        stop=lambda label, so_far: None if label in protected else outranked(label, so_far),
     )
     return {label: report.to_dict() for label, report in reports.items()}
+
+
+def outranked(label: str, so_far: Mapping[str, dict[str, Any]]) -> str | None:
+    """Why the design ``label`` can no longer be recommended on robustness (None while it
+    can): the smallest room to a first value outside among its axes measured so far (an upper
+    bound of its robustness) is at most the robustness of a design measured before it in
+    full, so it cannot be more robust than that design. Its remaining axes need not be
+    measured: the choice (:func:`robust_choice`) is the same without them."""
+    from experiments.margins.robustness import robustness
+
+    mine = robustness(so_far[label]).bracket[1]
+    for other, margins in so_far.items():
+        if other == label or margins.get("stopped") is not None:
+            continue  # the designs before ``label`` are whole, unless stopped themselves
+        theirs = robustness(margins)
+        if mine <= theirs.value:
+            return (
+                f"its smallest margin is at most {100 * mine:.1f}% of its box, "
+                f"not above {other}'s {100 * theirs.value:.1f}%"
+            )
+    return None
 
 
 def margin_subject(

@@ -169,3 +169,24 @@ def test_without_margins_the_choice_says_robustness_was_not_measured() -> None:
     comparison = _comparison(_entry("design 9", WORKS))
     rec = recommendation_of(_summary(comparison), comparison, None)
     assert rec["decision"] == BUILD and "robustness not measured" in rec["chosen"]
+
+
+def test_a_design_stopped_while_measured_is_said_at_most_and_never_contends_first() -> None:
+    # design 7 was stopped after fy (outranked): its partial robustness is only an upper
+    # bound, and a tie with the design that outranked it goes to the one measured whole
+    comparison = _comparison(_entry("design 7", WORKS), _entry("design 9", WORKS))
+    stopped = {**_margins("design 7", 0.2), "stopped": "not above design 9's 20.0%"}
+    margins = {
+        "design 7": stopped,
+        "design 9": _margins("design 9", 0.2),
+        "table3": _margins("table3", 0.047),
+    }
+    rec = recommendation_of(_summary(comparison), comparison, margins)
+    assert rec["contender"] == "design 9" and rec["label"] == "design 9"
+    comparison = _comparison(_entry("design 7", WORKS))
+    margins = {
+        "design 7": {**_margins("design 7", 0.01), "stopped": "x"},
+        "table3": margins["table3"],
+    }
+    rec = recommendation_of(_summary(comparison), comparison, margins)
+    assert rec["decision"] == KEEP and "at most 1.8%" in rec["why"]
