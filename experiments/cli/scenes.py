@@ -128,8 +128,8 @@ def load_family_design(family_file: Path, values: str | None) -> tuple[DeviceFam
     for name, value in zip(names, vector, strict=True):
         if not math.isfinite(value):  # nan, inf, 1e999: nothing a simulation can make
             raise UsageError(
-                f"--values: {name} = {value} is not a finite number; every value must be "
-                "finite (a value outside the family's box is allowed)"
+                f"--values: {family.name}: parameter {name} = {value} is not finite; every "
+                "value must be finite (a value outside the family's box is allowed)"
             )
     return family, vector
 
