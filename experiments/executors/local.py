@@ -219,7 +219,7 @@ class LocalPool:
         picklable). ``on_result(index, result)`` is called here as each job finishes, in
         completion order: the place for progress and for storing rows as they come. A job
         that raises, or kills its worker ``max_attempts`` times, raises :class:`JobFailed`:
-        no job starts after it, and the pool ends once the jobs in flight have."""
+        no job starts after it, and the pool's workers are ended at once (:func:`stop_pool`)."""
         results: dict[int, Any] = {}
 
         def done(_item: tuple[int, Job], result: tuple[int, Any], _attempts: int) -> list[Job]:
