@@ -143,8 +143,8 @@ def robustness(margins: Mapping[str, Any], kinds: Iterable[str] = DEVICE_KINDS) 
                 best = (inside, name, side)
     if none:
         return Robustness(0.0, none[0], None, (0.0, 0.0), tuple(edges), tuple(none))
-    value, axis, side = best
-    return Robustness(value, axis, side, (value, upper), tuple(edges), ())
+    value, limiting, limiting_side = best
+    return Robustness(value, limiting, limiting_side, (value, upper), tuple(edges), ())
 
 
 def of_dict(data: Mapping[str, Any]) -> Robustness:

@@ -8,6 +8,7 @@ verdict :func:`experiments.drop.family_verdict.family_verdict`)."""
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 import time
 from collections.abc import Callable, Collection, Mapping
@@ -223,7 +224,7 @@ def margins_of_each(
             rooms[row["parameter"]] = min(inside, default=math.inf)
         return sorted(axes, key=lambda a: rooms.get(a.name, math.inf))  # stable: ties keep order
 
-    def judged(label: str, margin: AxisMargin, first: bool) -> bool:
+    def judged(label: str, margin: AxisMargin, first: bool = False) -> bool:
         """Take one axis's margin in hand-out order; False once the design is stopped."""
         if stopped[label] is not None:
             wasted[label] += margin.drops
@@ -249,7 +250,7 @@ def margins_of_each(
                     if not judged(label, measure_axis(job), k == 0):
                         break
                 continue
-            _in_order(pool, jobs, lambda margin, k=k, label=label: judged(label, margin, k == 0))
+            _in_order(pool, jobs, functools.partial(judged, label, first=k == 0))
     for label in labels:  # the designs' axes in their usual order
         order = {a.name: i for i, a in enumerate(axes_of(subjects[label], kinds))}
         done[label].sort(key=lambda m: order[m.axis.name])

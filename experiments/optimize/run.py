@@ -294,8 +294,8 @@ def _robust(
         chain = design_centering(
             store.design_of_key(key),
             space.names,
-            space.low,
-            space.high,
+            space.low.tolist(),
+            space.high.tolist(),
             of,
             settings,
             budget=budget,

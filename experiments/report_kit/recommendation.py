@@ -56,12 +56,11 @@ def recommendation_html(
             '<div class="recommendation none"><h2>No design to build yet</h2>'
             f"<p>{e(absent or 'no design was confirmed on fresh draws')}.</p></div>"
         )
+    contender = (decision or {}).get("contender")
     kept = bool(decision and decision.get("decision") == KEEP)
     if kept:
         entry = comparison["baseline"]
-        base = next(
-            d for d in comparison.get("designs") or [] if str(d["label"]) == decision["contender"]
-        )
+        base = next(d for d in comparison.get("designs") or [] if str(d["label"]) == contender)
     else:
         entry = next(d for d in comparison.get("designs") or [] if str(d["label"]) == label)
         base = comparison["baseline"]
