@@ -649,14 +649,14 @@ def summary_text(results: dict[str, Any]) -> str:
     for row in eq10_rows(results):
         lines.append(" | ".join(row))
     lines.append("")
-    lines.append(" | ".join(CANDIDATE_HEADERS))
-    for row in candidate_rows(results):
-        lines.append(" | ".join(row))
-    lines.append("")
-    lines.append(" | ".join(COMPARISON_HEADERS))
-    for row in comparison_rows(results):
-        lines.append(" | ".join(row))
-    lines.append("")
+    for headers, rows in (
+        (CANDIDATE_HEADERS, candidate_rows(results)),
+        (COMPARISON_HEADERS, comparison_rows(results)),
+    ):
+        if rows:  # the robust goal has no Eq. 10 candidates or methods: no empty tables
+            lines.append(" | ".join(headers))
+            lines.extend(" | ".join(row) for row in rows)
+            lines.append("")
     lines.append(margins_line(results))
     if results.get("robust"):
         lines.append(f"robust objective: {robust_sentence(results)}")
