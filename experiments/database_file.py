@@ -146,6 +146,16 @@ def size_problem_in_wal(path: str | Path, problem: str | None) -> bool:
     return problem is not None and "truncated" in problem and wal_has_frames(path)
 
 
+def complete_checkpoint(db: sqlite3.Connection, path: Path) -> None:
+    """A database left by a full disk in the middle of a checkpoint (its main file shorter
+    than its header says, every page in its WAL) is checkpointed now, through ``db`` (open
+    for writing), so the main file is whole again before a job goes on."""
+    with path.open("rb") as handle:
+        problem = header_problem(handle.read(100), path.stat().st_size)
+    if problem:
+        db.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+
+
 def check_file(
     path: str | Path,
     schema: str,

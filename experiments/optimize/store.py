@@ -36,7 +36,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from experiments.database_file import check_file, open_read_only
+from experiments.database_file import check_file, complete_checkpoint, open_read_only
 from feeders.design import PARAMETER_NAMES
 
 _SCHEMA = """
@@ -171,6 +171,7 @@ def check_store(path: str | Path) -> bool:
         "optimisation database",
         added_later=ADDED_LATER,
         content_problem=_content_problem,
+        trust_wal=True,  # after a full disk its rows may sit in its WAL: read through it
     )
 
 
@@ -190,6 +191,7 @@ def connect(path: str | Path, readonly: bool = False) -> sqlite3.Connection:
         db.execute("PRAGMA journal_mode=WAL")
         db.execute("PRAGMA synchronous=NORMAL")
         db.executescript(_SCHEMA)
+        complete_checkpoint(db, path)
     db.row_factory = sqlite3.Row
     return db
 

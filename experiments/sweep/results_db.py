@@ -46,6 +46,7 @@ from typing import Any
 
 from experiments.database_file import (
     check_file,
+    complete_checkpoint,
     header_problem,
     open_read_only,
     size_problem_in_wal,
@@ -424,19 +425,9 @@ def connect(
         db.execute("PRAGMA synchronous=NORMAL")  # durable against a killed process
         db.executescript(schema(parameters))
         _allow_every_status(db)
-        _complete_checkpoint(db, path)
+        complete_checkpoint(db, path)
     db.row_factory = sqlite3.Row
     return db
-
-
-def _complete_checkpoint(db: sqlite3.Connection, path: Path) -> None:
-    """A database left by a full disk in the middle of a checkpoint (its main file shorter
-    than its header says, every page in its WAL) is checkpointed now, so the main file is
-    whole again before the run goes on."""
-    with path.open("rb") as handle:
-        problem = header_problem(handle.read(100), path.stat().st_size)
-    if problem:
-        db.execute("PRAGMA wal_checkpoint(TRUNCATE)")
 
 
 def _allow_every_status(db: sqlite3.Connection) -> None:
