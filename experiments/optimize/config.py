@@ -65,6 +65,7 @@ from feeders.fields import (
     number_field,
     read_yaml,
     shown,
+    shown_value,
 )
 from feeders.scene_yaml import ENVIRONMENT_KEYS, environment_from_dict
 
@@ -199,7 +200,7 @@ def _method(spec: Any, field_name: str) -> Method:
     name = spec.get("method")
     if name not in OPTIMIZER_NAMES:
         raise OptimizeConfigError(
-            f"{field_name}.method = {shown(repr(name))}; allowed: {', '.join(OPTIMIZER_NAMES)}"
+            f"{field_name}.method = {shown_value(name)}; allowed: {', '.join(OPTIMIZER_NAMES)}"
         )
     if "budget" not in spec:
         raise OptimizeConfigError(f"{field_name}.budget is required (evaluations per seed)")
@@ -207,7 +208,7 @@ def _method(spec: Any, field_name: str) -> Method:
     seeds_spec = spec.get("seeds", [0])
     if not isinstance(seeds_spec, list) or not seeds_spec or len(seeds_spec) > 1000:
         raise OptimizeConfigError(
-            f"{field_name}.seeds: expected a list of 1 to 1000 seeds, got {shown(repr(seeds_spec))}"
+            f"{field_name}.seeds: expected a list of 1 to 1000 seeds, got {shown_value(seeds_spec)}"
         )
     seeds = tuple(
         integer_field(s, f"{field_name}.seeds[{i}]", 0, 2**31 - 1) for i, s in enumerate(seeds_spec)
@@ -220,7 +221,7 @@ def _method(spec: Any, field_name: str) -> Method:
     start = spec.get("start", "starts")
     if start not in METHOD_STARTS:
         raise OptimizeConfigError(
-            f"{field_name}.start = {shown(repr(start))}; allowed: {', '.join(METHOD_STARTS)}"
+            f"{field_name}.start = {shown_value(start)}; allowed: {', '.join(METHOD_STARTS)}"
         )
     return Method(name, budget, seeds, population, start)
 
@@ -251,7 +252,7 @@ def _presets(start: dict[str, Any], family: str | None) -> list[str]:
     presets = start.get("presets", [allowed[0]] if family is not None else ["table3"])
     if not isinstance(presets, list) or len(presets) > len(allowed):
         raise OptimizeConfigError(
-            f"start.presets: expected a list of preset names, got {shown(repr(presets))}"
+            f"start.presets: expected a list of preset names, got {shown_value(presets)}"
         )
     for i, preset in enumerate(presets):
         if preset not in allowed:
@@ -260,7 +261,7 @@ def _presets(start: dict[str, Any], family: str | None) -> list[str]:
                 if family is not None
                 else f"presets: {', '.join(allowed)}"
             )
-            raise OptimizeConfigError(f"start.presets[{i}] = {shown(repr(preset))}; {allowed_text}")
+            raise OptimizeConfigError(f"start.presets[{i}] = {shown_value(preset)}; {allowed_text}")
     return presets
 
 
@@ -285,7 +286,7 @@ def _config_from_dict(data: Any, name: str, base: Path) -> OptimizeConfig:
     )
     goal = data.get("goal", EQ10)
     if goal not in GOALS:
-        raise OptimizeConfigError(f"goal = {shown(repr(goal))}; allowed: {', '.join(GOALS)}")
+        raise OptimizeConfigError(f"goal = {shown_value(goal)}; allowed: {', '.join(GOALS)}")
     centering = _centering(data.get("centering", {}) or {}, goal)
     family, family_yaml = None, ""
     if "family" in data:
