@@ -89,16 +89,62 @@ def test_a_lock_path_that_is_not_a_regular_file_is_refused_and_left_alone(
 
 def test_a_directory_of_another_job_is_refused_naming_the_job(tmp_path: Path) -> None:
     """Issue 23: ``optimize --out SWEEP_DIR`` and ``run --out OPTIMIZE_DIR`` both ran and
-    overwrote the other job's summary.json and report.html. The lock file records its job;
-    another job's directory is refused by name, the same job's is taken again."""
+    overwrote the other job's summary.json and report.html. A job's directory holds its
+    database; another job's directory is refused by name, the same job's is taken again."""
     with sweep_lock(tmp_path, job="optimize"):
-        pass
+        (tmp_path / "evaluations.sqlite").write_bytes(b"")  # what optimize leaves
     with pytest.raises(DirectoryInUse) as info, sweep_lock(tmp_path, job="run"):
         pass
     message = str(info.value)
     assert "partfeeder optimize" in message and "--out" in message and "\n" not in message
     with sweep_lock(tmp_path, job="optimize") as path:
         assert json.loads(path.read_text())["job"] == "optimize"
+
+
+def test_a_lock_file_an_older_version_left_naming_another_job_is_refused(tmp_path: Path):
+    (tmp_path / LOCK_FILE).write_text(json.dumps({"pid": 1, "job": "optimize"}))
+    with pytest.raises(DirectoryInUse, match="partfeeder optimize"), sweep_lock(tmp_path):
+        pass
+
+
+@pytest.mark.parametrize("ending", ["clean", "exception"])
+def test_no_lock_file_remains_after_the_job(tmp_path: Path, ending: str) -> None:
+    """Issue 37 (and 39): partfeeder.lock stayed in the directory after a clean exit."""
+    try:
+        with sweep_lock(tmp_path) as path:
+            assert path.exists()
+            if ending == "exception":
+                raise KeyboardInterrupt
+    except KeyboardInterrupt:
+        pass
+    assert not (tmp_path / LOCK_FILE).exists()
+
+
+def test_a_lock_taken_on_a_file_its_holder_removed_is_taken_again_on_a_new_one(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The file is removed while still locked; a process that opened it just before locks
+    the removed file: it must not count that as holding the directory, or it and the next
+    process (which makes a new file) would both hold it. Simulated: the first lock call finds
+    its file removed (and another made) by the time it has locked it."""
+    import fcntl
+
+    from experiments.sweep import lock as lock_module
+
+    real = fcntl.flock
+    calls = []
+
+    def flock_after_the_holder_ended(fd: int, operation: int) -> None:
+        calls.append(fd)
+        real(fd, operation)
+        if len(calls) == 1:
+            os.unlink(tmp_path / LOCK_FILE)  # the holder ended: its file removed
+            (tmp_path / LOCK_FILE).write_text("")  # and a new one made by another process
+
+    monkeypatch.setattr(lock_module.fcntl, "flock", flock_after_the_holder_ended)
+    with sweep_lock(tmp_path) as path:
+        assert len(calls) == 2  # locked a second time, on the file the path names
+        assert json.loads(path.read_text())["pid"] == os.getpid()
 
 
 def test_a_held_lock_names_the_holders_job(tmp_path: Path) -> None:
