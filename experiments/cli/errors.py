@@ -74,10 +74,23 @@ def one_line(text: str) -> str:
     return text if len(text) <= MAX_LINE else shown(text)
 
 
+def disk_full(exc: BaseException) -> bool:
+    """Whether ``exc`` says the disk (or the user's quota) is full: a file's write, or
+    SQLite's "database or disk is full"."""
+    if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT):
+        return True
+    return isinstance(exc, sqlite3.OperationalError) and "disk is full" in str(exc)
+
+
 def input_error_line(exc: BaseException) -> str | None:
     """The line to print for ``exc`` if it is bad input, else None (a bug: re-raise)."""
     if isinstance(exc, _input_classes()):
         return str(exc)
+    if disk_full(exc):
+        return (
+            f"the disk is full ({one_line(str(exc))}): free space and run the same command "
+            "again; what was stored so far is kept and the job goes on from there"
+        )
     if isinstance(exc, OSError) and exc.errno in PATH_ERRNOS:
         where = f"'{shown(exc.filename)}'" if exc.filename is not None else "a file"
         return f"cannot use {where}: {exc.strerror or errno.errorcode.get(exc.errno or 0)}"

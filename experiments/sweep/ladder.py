@@ -256,8 +256,10 @@ def export_ompl(results: str | Path, out_dir: str | Path) -> Path:
     target.unlink(missing_ok=True)
     try:
         _read_logs(target, paths)
-    except Exception:
+    except Exception as exc:
         target.unlink(missing_ok=True)
+        if isinstance(exc, sqlite3.OperationalError) and "disk is full" in str(exc):
+            raise  # the disk, not a log: said as such (experiments.cli.errors.disk_full)
         raise _unreadable_log(results, paths) from None
     return target
 
