@@ -407,7 +407,9 @@ def family_sentence(results: dict[str, Any]) -> str:
             f"{verdict['drops']} fresh trials, P(both) 95% interval {_interval(both['interval'])}, "
             f"mean Eq. 10 G {cell(verdict.get('mean_g'), '.2f')} s."
         )
-    parts.append(f"Chosen: {chosen_sentence(results)}.")
+    robust = results.get("robust")
+    chosen = robust_chosen_sentence(results) if robust else chosen_sentence(results)
+    parts.append(f"Chosen: {chosen}.")
     return " ".join(parts)
 
 
