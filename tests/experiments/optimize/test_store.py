@@ -1,6 +1,7 @@
 """The optimisation database: tied to one objective, damaged files refused untouched."""
 
 import pytest
+from full_disk import wal_copy
 
 from experiments.optimize import store
 
@@ -56,38 +57,6 @@ def test_a_row_this_program_never_writes_is_refused(tmp_path):
         store.connect(path)
 
 
-def _wal_copy(directory, rows: int):
-    """An optimisation database as a full disk leaves it mid-checkpoint (as the sweep's test
-    makes one: tests/experiments/sweep/test_results_db_check.py): its rows committed in its
-    ``-wal``, the main file's first page (its header counting every page) written, the pages
-    after it not."""
-    import shutil
-    import sqlite3
-
-    source = directory / "source"
-    source.mkdir()
-    path = source / "evaluations.sqlite"
-    store.connect(path).close()
-    db = sqlite3.connect(path)
-    db.execute("PRAGMA wal_autocheckpoint=0")
-    with db:
-        db.executemany(
-            "INSERT INTO meta VALUES (?, ?)", [(f"k{i}", "x" * 3000) for i in range(rows)]
-        )
-    copy = directory / "optimize"
-    copy.mkdir()
-    for suffix in ("", "-wal"):
-        shutil.copyfile(str(path) + suffix, str(copy / path.name) + suffix)
-    db.execute("PRAGMA wal_checkpoint(TRUNCATE)")
-    expected = db.execute("SELECT key, value FROM meta ORDER BY key").fetchall()
-    page = db.execute("PRAGMA page_size").fetchone()[0]
-    db.close()
-    target = copy / path.name
-    target.write_bytes(path.read_bytes()[:page] + target.read_bytes()[page:])
-    assert path.stat().st_size > target.stat().st_size  # the header counts pages not there
-    return target, expected
-
-
 def test_a_store_whose_rows_sit_in_its_wal_is_resumed_not_called_truncated(tmp_path):
     """Issue 37, item 4, for optimize: after a full disk the store's rows sit in its WAL;
     the check reads through it, and opening it for writing checkpoints it whole."""
@@ -95,7 +64,10 @@ def test_a_store_whose_rows_sit_in_its_wal_is_resumed_not_called_truncated(tmp_p
 
     from experiments.database_file import header_problem
 
-    path, expected = _wal_copy(tmp_path, rows=40)
+    source = tmp_path / "source"
+    source.mkdir()
+    store.connect(source / "evaluations.sqlite").close()
+    path, expected = wal_copy(source / "evaluations.sqlite", tmp_path / "optimize", 40)
     with path.open("rb") as handle:
         assert "truncated" in (header_problem(handle.read(100), path.stat().st_size) or "")
     assert store.check_store(path) is True

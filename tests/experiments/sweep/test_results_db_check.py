@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 from file_state import directory_state
+from full_disk import wal_copy
 from sweep_fixtures import fake_result, tiny_config
 
 from experiments.cli import run
@@ -191,37 +192,6 @@ def test_a_database_storing_a_family_text_the_reader_refuses_is_refused(
     assert directory_state(path.parent) == before
 
 
-def _wal_copy(directory: Path, rows: int) -> tuple[Path, list[tuple]]:
-    """A database as a full disk leaves it mid-checkpoint: its rows committed in its ``-wal``,
-    the main file's page 1 (the header counting every page) written, the pages after it not.
-    Made from the files of a connection that has not checkpointed, copied, with the header
-    page of the checkpointed file written over the copy's first page."""
-    import shutil
-
-    source = directory / "source"
-    path = sweep_database(source)
-    db = sqlite3.connect(path)
-    db.execute("PRAGMA wal_autocheckpoint=0")
-    with db:
-        db.executemany(
-            "INSERT INTO meta VALUES (?, ?)", [(f"k{i}", "x" * 3000) for i in range(rows)]
-        )
-    copy = directory / "sweep"
-    copy.mkdir()
-    for suffix in ("", "-wal"):
-        shutil.copyfile(str(path) + suffix, str(copy / "results.sqlite") + suffix)
-    db.execute("PRAGMA wal_checkpoint(TRUNCATE)")
-    expected = db.execute("SELECT key, value FROM meta ORDER BY key").fetchall()
-    page = db.execute("PRAGMA page_size").fetchone()[0]
-    db.close()
-    first = path.read_bytes()[:page]
-    target = copy / "results.sqlite"
-    data = target.read_bytes()
-    target.write_bytes(first + data[page:])
-    assert path.stat().st_size > target.stat().st_size  # the header counts pages not there
-    return target, expected
-
-
 def test_a_database_whose_rows_sit_in_its_wal_is_resumed_not_called_truncated(
     tmp_path: Path,
 ) -> None:
@@ -230,7 +200,7 @@ def test_a_database_whose_rows_sit_in_its_wal_is_resumed_not_called_truncated(
     whole. Read through the WAL, it passes; opened for writing it is checkpointed whole."""
     from experiments.database_file import header_problem
 
-    path, expected = _wal_copy(tmp_path, rows=40)
+    path, expected = wal_copy(sweep_database(tmp_path / "source"), tmp_path / "sweep", 40)
     with path.open("rb") as handle:
         assert "truncated" in (header_problem(handle.read(100), path.stat().st_size) or "")
     assert results_db.check_database(path) is True
