@@ -295,10 +295,12 @@ def margins_of_contenders(
     confirmed = [d for d in comparison["designs"] if _confirmed(d, comparison)]
     if not confirmed:
         return None
-    # the baseline first (its margins are shown in any case), then in the fresh ranking's order
+    # the baseline first (its margins are shown in any case), then in the fresh ranking's
+    # order; a baseline that cannot be built has no margins (nor a verdict to compare)
+    base = comparison["baseline"]
     subjects = {
         str(d["label"]): margin_subject(summary, db_path, list(d["values"]), str(d["label"]))
-        for d in [comparison["baseline"], *confirmed]
+        for d in [*([base] if base.get("verdict") else []), *confirmed]
     }
     kinds = MARGIN_AXES[which]
     sweep_seed = int((config.get("designs") or {}).get("seed", 0))

@@ -190,3 +190,64 @@ def test_a_design_stopped_while_measured_is_said_at_most_and_never_contends_firs
     }
     rec = recommendation_of(_summary(comparison), comparison, margins)
     assert rec["decision"] == KEEP and "at most 1.8%" in rec["why"]
+
+
+def test_a_baseline_that_cannot_be_built_gets_no_margins_and_the_design_is_built(
+    monkeypatch,
+) -> None:
+    """A ``--baseline`` whose device cannot be built has no verdict on the fresh draws: its
+    margins are not measured (its verdict would raise), the confirmed designs' are."""
+    from experiments.sweep import report_recommendation as rr
+    from experiments.sweep import report_verdicts
+
+    comparison = _comparison(_entry("design 9", WORKS))
+    comparison["baseline"] = _entry("table3", None)  # cannot be built
+    measured: list[str] = []
+
+    def each(subjects, *args, **kwargs):
+        measured.extend(subjects)
+        return {label: _Report(_margins(label, 0.05)) for label in subjects}
+
+    monkeypatch.setattr("experiments.margins.run.margins_of_each", each)
+    monkeypatch.setattr(report_verdicts, "sweep_config", lambda _db: _CONFIG)
+    monkeypatch.setattr(rr, "margin_subject", lambda summary, db, values, label: label)
+    margins = rr.margins_of_contenders(_summary(comparison), Path("x"), comparison)
+    assert measured == ["design 9"] and set(margins) == {"design 9"}
+    rec = recommendation_of(_summary(comparison), comparison, margins)
+    assert rec["decision"] == BUILD and rec["label"] == "design 9"
+
+
+class _Report:
+    def __init__(self, data: dict):
+        self.data = data
+
+    def to_dict(self) -> dict:
+        return self.data
+
+
+_CONFIG = {
+    "designs": {"seed": 0},
+    "workers": 1,
+    "ladder": [
+        {
+            "level": "passive",
+            "verdict": {
+                "rule": "sprt",
+                "works_p": 0.95,
+                "fails_p": 0.8,
+                "error": 0.01,
+                "min_drops": 1,
+                "batch": 1,
+                "max_drops": 200,
+                "target": 0.9,
+            },
+            "perturbations": {
+                "position": 0.05,
+                "yaw": 0.05,
+                "speed": 0.05,
+                "friction": 0.2,
+                "tolerance": 0.01,
+            },
+        }
+    ],
+}
