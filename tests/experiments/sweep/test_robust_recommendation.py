@@ -6,12 +6,14 @@ designs' margins side by side."""
 
 from __future__ import annotations
 
+import dataclasses
 import html
 import re
 from pathlib import Path
 
 from test_report_recommendation import WORKS, _comparison, _entry, _summary
 
+from experiments.drop.perturbations import Perturbations
 from experiments.report_kit.recommendation import KEEP
 from experiments.sweep.report_html import html_page
 from experiments.sweep.report_recommendation import BUILD, recommendation_of
@@ -241,13 +243,7 @@ _CONFIG = {
                 "max_drops": 200,
                 "target": 0.9,
             },
-            "perturbations": {
-                "position": 0.05,
-                "yaw": 0.05,
-                "speed": 0.05,
-                "friction": 0.2,
-                "tolerance": 0.01,
-            },
+            "perturbations": dataclasses.asdict(Perturbations()),
         }
     ],
 }
