@@ -14,7 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from experiments.margins.robustness import robustness
+from experiments.margins.robustness import in_words, robustness
 
 INSIDE = "#2b8cbe"  # the allowed interval
 NONE = "#d95f02"  # an axis with no margin (the nominal itself below the target)
@@ -45,11 +45,7 @@ def _num(value: float) -> str:
 
 def _smallest(data: dict) -> str:
     """A design's robustness in a few words (:mod:`experiments.margins.robustness`)."""
-    r = robustness(data)
-    if r.unlimited:
-        return f"{data['design']} none inside the box"
-    where = f"{r.axis} {r.side}" if r.side else f"{r.axis}: none"
-    return f"{data['design']} {100 * r.value:.1f}% ({where})"
+    return f"{data['design']} {in_words(robustness(data), bool(data.get('stopped')))}"
 
 
 def _bar(ax, row: dict, y: float, height: float, color: str, end_color: str) -> str:

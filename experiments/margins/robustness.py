@@ -170,3 +170,14 @@ def more_robust(a: Robustness, b: Robustness) -> bool:
     if a.unlimited:
         return not b.unlimited
     return a.bracket[0] > b.bracket[1] + ABUTTING
+
+
+def in_words(r: Robustness, stopped: bool = False) -> str:
+    """``r`` in a few words, "6.3% (gx low)"; "at most" the top of its bracket for a design
+    whose margins were ``stopped`` before every axis was measured."""
+    if r.unlimited:
+        return "unlimited within the box"
+    where = f" ({r.axis} {r.side})" if r.side else f" ({r.axis}: no margin)" if r.axis else ""
+    if stopped:
+        return f"at most {100.0 * r.bracket[1]:.1f}%{where}"
+    return f"{100.0 * r.value:.1f}%{where}"

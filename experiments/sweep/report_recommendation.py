@@ -143,14 +143,11 @@ def reliability(entry: dict[str, Any]) -> dict[str, Any]:
 
 
 def _percent(r: Robustness, margins: dict[str, Any] | None = None) -> str:
-    """A design's robustness in words; "at most" for a design whose margins were stopped
-    (:func:`outranked`: its bracket's top is what was shown)."""
-    if r.unlimited:
-        return "unlimited within the box"
-    where = f" ({r.axis} {r.side})" if r.side else f" ({r.axis}: no margin)" if r.axis else ""
-    if margins and margins.get("stopped"):
-        return f"at most {100.0 * r.bracket[1]:.1f}%{where}"
-    return f"{100.0 * r.value:.1f}%{where}"
+    """A design's robustness in words ("at most" for a design whose margins were stopped,
+    :func:`outranked`)."""
+    from experiments.margins.robustness import in_words
+
+    return in_words(r, bool(margins and margins.get("stopped")))
 
 
 def robust_choice(
