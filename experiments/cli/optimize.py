@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from experiments.cli.baseline import add_baseline_argument, baseline_for
 from experiments.cli.kernels import compile_once
-from experiments.cli.usage import UsageError, out_dir
+from experiments.cli.usage import UsageError, check_count, out_dir
 from experiments.names import EXECUTOR_NAMES
 
 if TYPE_CHECKING:
@@ -49,6 +49,23 @@ def add_arguments(opt: argparse.ArgumentParser) -> None:
         "--scheduler", default=None, help="Dask scheduler address (tcp://host:port) for dask"
     )
     opt.add_argument("--workers", type=int, default=None, help="local worker processes")
+    opt.add_argument(
+        "--evaluations",
+        type=int,
+        default=None,
+        metavar="N",
+        help="override the evaluation budget: every method's evaluations per seed "
+        "(methods[].budget; with goal robustness, centering.budget)",
+    )
+    opt.add_argument(
+        "--trials",
+        type=int,
+        default=None,
+        metavar="N",
+        help="override final.trials: the trials of each verdict on fresh draws (the "
+        "candidates', the optimum's, the baseline's); objective.trials, which defines the "
+        "objective, stays",
+    )
     add_baseline_argument(opt)
     opt.add_argument("--no-report", action="store_true", help="skip the HTML report")
     opt.add_argument("--json", action="store_true", help="print the results as JSON")
@@ -200,6 +217,25 @@ def _nearest_failing(db: Any) -> list[dict]:
     return [row for _, row in sorted(rows, key=lambda r: r[0])]
 
 
+def _budget_options(args: argparse.Namespace, config: OptimizeConfig) -> OptimizeConfig:
+    """``config`` with ``--evaluations`` and ``--trials`` applied, each checked against the
+    range of the config field it overrides (one line naming the option otherwise)."""
+    from experiments.optimize.config import (
+        MAX_BUDGET,
+        MAX_CENTERING_BUDGET,
+        MAX_TRIALS,
+        ROBUSTNESS,
+        with_budget,
+    )
+
+    if args.evaluations is not None:
+        high = MAX_CENTERING_BUDGET if config.goal == ROBUSTNESS else MAX_BUDGET
+        check_count(args.evaluations, "--evaluations", high)
+    if args.trials is not None:
+        check_count(args.trials, "--trials", MAX_TRIALS)
+    return with_budget(config, args.evaluations, args.trials)
+
+
 def run(args: argparse.Namespace) -> int:
     from experiments.optimize.config import OptimizeConfigError, config_from_dict, load_config
     from experiments.optimize.store import StoreDamaged, StoreMismatch
@@ -210,6 +246,7 @@ def run(args: argparse.Namespace) -> int:
             config = config_from_dict({**config.to_dict(), "workers": args.workers}, config.name)
     except OptimizeConfigError as exc:
         raise UsageError(str(exc)) from None
+    config = _budget_options(args, config)
     if args.executor != "dask" and args.scheduler is not None:
         raise UsageError("--scheduler is only for --executor dask")
     if args.executor == "dask":

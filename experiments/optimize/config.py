@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -74,6 +74,7 @@ if TYPE_CHECKING:
 
 MAX_BUDGET = 1_000_000
 MAX_TRIALS = 10_000
+MAX_CENTERING_BUDGET = 10_000  # margins evaluations of design centering
 METHOD_STARTS = ("starts", "best")
 EQ10 = "eq10"  # minimise R, the robust form of Eq. 10 (the default)
 ROBUSTNESS = "robustness"  # maximise the smallest normalised margin at the target (issue 34)
@@ -363,7 +364,9 @@ def _centering(spec: Any, goal: str) -> CenteringSettings:
         )
     d = CenteringSettings()
     return CenteringSettings(
-        budget=integer_field(spec.get("budget", d.budget), "centering.budget", 1, 10_000),
+        budget=integer_field(
+            spec.get("budget", d.budget), "centering.budget", 1, MAX_CENTERING_BUDGET
+        ),
         step=number_field(spec.get("step", d.step), "centering.step", 1e-3, 1.0),
         min_step=number_field(spec.get("min_step", d.min_step), "centering.min_step", 0.0, 1.0),
         explore=integer_field(spec.get("explore", d.explore), "centering.explore", 0, 100),
@@ -373,6 +376,28 @@ def _centering(spec: Any, goal: str) -> CenteringSettings:
         drops=integer_field(spec.get("drops", d.drops), "centering.drops", 1, MAX_TRIALS),
         focus=number_field(spec.get("focus", d.focus), "centering.focus", 0.0, 1e6),
     )
+
+
+def with_budget(
+    config: OptimizeConfig, evaluations: int | None = None, trials: int | None = None
+) -> OptimizeConfig:
+    """``config`` on another budget (``optimize --evaluations/--trials``), so a short run
+    needs no edited copy of the YAML. ``evaluations``: every method's budget of evaluations
+    per seed (``methods[].budget``) and, with goal robustness, the margins evaluations of
+    design centering (``centering.budget``); ``trials``: the trials of every verdict on
+    fresh draws (``final.trials``: the candidates', the optimum's, the baseline's). None
+    keeps the config's. The objective's K draws (``objective.trials``) stay: they define
+    the objective, so a resumed run's stored evaluations still count."""
+    changed = config
+    if evaluations is not None:
+        changed = replace(
+            changed,
+            methods=tuple(replace(m, budget=evaluations) for m in changed.methods),
+            centering=replace(changed.centering, budget=evaluations),
+        )
+    if trials is not None:
+        changed = replace(changed, final_trials=trials)
+    return changed
 
 
 def load_config(path: str | Path) -> OptimizeConfig:

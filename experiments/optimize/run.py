@@ -470,15 +470,21 @@ def _runs(config: OptimizeConfig) -> list[tuple[str, int]]:
 def ranked_keys(db, runs: list[tuple[str, int]], count: int) -> list[str]:
     """The ``count`` distinct designs with the lowest robust value asked by any of ``runs``
     (label, budget: a run's calls past its budget, stored by an earlier config with a larger
-    one, are not its), best first (ties: the earliest asked, in the order of ``runs``)."""
+    one, are not its), best first (ties: the earliest asked, in the order of ``runs``).
+    A design that cannot be built (R = K + 1, with its reason) is never one of them: it has
+    no verdict to validate nor a centre to move (a small ``--evaluations`` budget may have
+    fewer buildable designs than ``final.candidates``)."""
     values = store.evaluations(db)
     calls = store.calls(db)
     first: dict[str, tuple[float, int, int]] = {}
     for r, (run, budget) in enumerate(runs):
         for n, k in enumerate(calls.get(run, [])[:budget]):
-            first.setdefault(k, (values[k]["value"], r, n))
+            if values[k]["reason"] is None:
+                first.setdefault(k, (values[k]["value"], r, n))
     if not first:
-        raise ValueError("no method evaluated any design (every budget is 0?)")
+        raise ValueError(
+            "no method evaluated a design that can be built (every budget is 0, or too small?)"
+        )
     return sorted(first, key=first.__getitem__)[:count]
 
 

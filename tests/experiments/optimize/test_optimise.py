@@ -19,7 +19,7 @@ from cli_process import ROOT
 
 from experiments.optimize import store
 from experiments.optimize.config import config_from_dict
-from experiments.optimize.run import DATABASE, best_key, optimise
+from experiments.optimize.run import DATABASE, best_key, optimise, ranked_keys
 from feeders.design import DESIGN_SPACE, PARAMETER_NAMES
 
 SMALL = {
@@ -194,3 +194,43 @@ def test_same_result_on_a_dask_cluster(small_run, tmp_path):
         )
     assert remote["runs"] == local["runs"]
     assert remote["optimum"]["verdict"]["transitions"] == local["optimum"]["verdict"]["transitions"]
+
+
+def _evaluated(db, run: str, values: list[tuple[float, str | None]]) -> list[str]:
+    """Store one call of ``run`` per (R, reason), designs 0.1 apart; their keys in order."""
+    keys = []
+    for n, (value, reason) in enumerate(values):
+        key = store.design_key([0.1 * n] * 12)
+        result = {
+            "value": value,
+            "both": 0,
+            "trials": 16,
+            "successes": [0, 0],
+            "mean_g": None,
+            "reason": reason,
+            "trial_data": [],
+            "wall_time_s": 0.1,
+        }
+        store.record(db, key, result)
+        store.record_call(db, run, n, key)
+        keys.append(key)
+    return keys
+
+
+def test_a_design_that_cannot_be_built_is_never_a_candidate(tmp_path):
+    # issue 39: `optimize --evaluations 3` ranked an unbuildable design (R = K + 1) among the
+    # four candidates, whose verdict then failed ("the protuberance tip ... inside a wall")
+    db = store.connect(tmp_path / DATABASE)
+    run = "differential-evolution/seed0"
+    keys = _evaluated(db, run, [(0.4, None), (17.0, "tip inside a wall"), (16.8, None)])
+    assert ranked_keys(db, [(run, 3)], 4) == [keys[0], keys[2]]
+    db.close()
+
+
+def test_a_run_with_no_buildable_design_says_so(tmp_path):
+    db = store.connect(tmp_path / DATABASE)
+    run = "powell/seed0"
+    _evaluated(db, run, [(17.0, "tip inside a wall")])
+    with pytest.raises(ValueError, match="no method evaluated a design that can be built"):
+        ranked_keys(db, [(run, 1)], 4)
+    db.close()
