@@ -11,10 +11,14 @@ CONFIG_DIR = Path(__file__).resolve().parent / "configs"  # experiments/configs/
 
 def resolve_config(path: str | Path) -> Path:
     """``path``, or the shipped config of that name (``experiments/configs/NAME.yaml``) when
-    ``path`` is a bare name with no suffix and no such file here."""
+    ``path`` is a bare name with no suffix and no such file here. A directory of that name
+    is not such a file: a job's default output folder is named after its config
+    (``optimize/optimize`` for ``partfeeder optimize``), and the command run again to resume
+    must find its config, not its output (issue 39)."""
     path = Path(path)
     shipped = CONFIG_DIR / f"{path.name}.yaml"
-    if len(path.parts) == 1 and path.suffix == "" and not _exists(path) and _exists(shipped):
+    here = _exists(path) and not path.is_dir()
+    if len(path.parts) == 1 and path.suffix == "" and not here and _exists(shipped):
         return shipped
     return path
 
