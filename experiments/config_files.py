@@ -29,3 +29,29 @@ def _exists(path: Path) -> bool:
         return path.exists()
     except OSError:
         return False
+
+
+def shipped_configs() -> dict[str, list[str]]:
+    """The shipped configs' names (sorted) by the command that reads them, from the package's
+    configs directory: each file's first line names its command (``# partfeeder run ...``,
+    ``# partfeeder optimize ...``), so ``--help`` lists every one without a hard-coded list
+    and without parsing YAML. A file whose first line names no command is under ``""``."""
+    found: dict[str, list[str]] = {}
+    for path in sorted(CONFIG_DIR.glob("*.yaml"), key=lambda p: p.stem):
+        with path.open(encoding="utf-8") as f:
+            words = f.readline().replace(":", " ").split()
+        command = words[2] if words[:2] == ["#", "partfeeder"] and len(words) > 2 else ""
+        found.setdefault(command, []).append(path.stem)
+    return found
+
+
+def shipped_configs_help(command: str) -> str:
+    """The shipped configs for ``--help``: ``command``'s by name, then the others' with their
+    command (every shipped config named, each where it belongs)."""
+    configs = shipped_configs()
+    others = "; ".join(
+        f"for {other or 'no command'}: {', '.join(names)}"
+        for other, names in sorted(configs.items())
+        if other != command
+    )
+    return ", ".join(configs.get(command, [])) + (f" ({others})" if others else "")

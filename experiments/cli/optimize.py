@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 from experiments.cli.baseline import add_baseline_argument, baseline_for
 from experiments.cli.kernels import compile_once
 from experiments.cli.usage import UsageError, check_count, out_dir
+from experiments.config_files import shipped_configs_help
 from experiments.names import EXECUTOR_NAMES
 
 if TYPE_CHECKING:
@@ -30,9 +31,10 @@ def add_arguments(opt: argparse.ArgumentParser) -> None:
         "config",
         nargs="?",
         default="optimize",
-        help="optimisation config: a YAML file, or a shipped one by name: optimize (a few "
-        "minutes), optimize-compare (every method, several seeds), robust (maximise the smallest "
-        "normalised margin at the verdict's target: design centering)",
+        help="optimisation config: a YAML file, or a shipped one by name: "
+        f"{shipped_configs_help('optimize')}; optimize takes a few minutes, optimize-compare "
+        "runs every method on several seeds, robust maximises the smallest normalised margin "
+        "at the verdict's target (design centering)",
     )
     opt.add_argument(
         "--from",

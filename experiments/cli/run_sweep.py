@@ -14,6 +14,7 @@ from experiments.cli.baseline import add_baseline_argument, baseline_for, check_
 from experiments.cli.kernels import compile_once
 from experiments.cli.report import finish
 from experiments.cli.usage import UsageError, out_dir
+from experiments.config_files import shipped_configs_help
 from experiments.names import EXECUTOR_NAMES
 
 DEFAULT_OUT = Path("sweep")
@@ -24,8 +25,9 @@ def add_arguments(run: argparse.ArgumentParser) -> None:
         "config",
         nargs="?",
         default="default",
-        help="experiment config: a YAML file, or a shipped one by name: default (a few "
-        "minutes), paper (the paper's scale)",
+        help="experiment config: a YAML file, or a shipped one by name: "
+        f"{shipped_configs_help('run')}; default takes a few minutes, paper is the paper's "
+        "scale (hours)",
     )
     run.add_argument(
         "--out", type=Path, default=None, help="sweep directory (default: sweep/<config name>)"

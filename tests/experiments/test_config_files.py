@@ -6,12 +6,14 @@ a config file, so a bare name that is one here is the shipped config of that nam
 
 from __future__ import annotations
 
+import contextlib
+import io
 from pathlib import Path
 
 import pytest
 
 from experiments.cli import entry
-from experiments.config_files import CONFIG_DIR, resolve_config
+from experiments.config_files import CONFIG_DIR, resolve_config, shipped_configs
 from experiments.optimize.config import OptimizeConfig, load_config
 from experiments.sweep.config import load_config as load_sweep_config
 
@@ -69,3 +71,35 @@ def test_the_readme_optimize_command_run_again_in_the_same_folder_resumes(
         assert "run the same command again to resume" in capsys.readouterr().err
     assert [out for _, out in outs] == [Path("optimize/optimize")] * 2
     assert outs[0][0] == outs[1][0] == load_config(CONFIG_DIR / "optimize.yaml")
+
+
+def _help(command: str) -> str:
+    """``partfeeder COMMAND --help`` as printed, its lines joined (argparse wraps words and
+    breaks a name at its hyphen: "ladder-" / "order")."""
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out), pytest.raises(SystemExit):
+        entry.run([command, "--help"])
+    return " ".join(out.getvalue().split()).replace("- ", "-")
+
+
+def test_every_shipped_config_is_filed_under_the_command_that_reads_it() -> None:
+    configs = shipped_configs()
+    listing = sorted(p.stem for p in CONFIG_DIR.glob("*.yaml"))
+    assert sorted(configs) == ["optimize", "run"]  # none under "" (no command named)
+    assert sorted(configs["run"] + configs["optimize"]) == listing
+    for name in configs["run"]:  # each reads as the config of its command
+        assert load_sweep_config(name).name
+    for name in configs["optimize"]:
+        assert load_config(name).name
+
+
+@pytest.mark.parametrize("command", ["run", "optimize"])
+def test_help_names_every_shipped_config(command: str) -> None:
+    """Issue 39: ``run --help`` named 2 of the 8 shipped configs (default and paper)."""
+    text = _help(command)
+    listing = sorted(p.stem for p in CONFIG_DIR.glob("*.yaml"))
+    assert len(listing) >= 9 and all(f" {name}" in text for name in listing)
+    named = shipped_configs()
+    mine = ", ".join(named[command])
+    other = "optimize" if command == "run" else "run"
+    assert f"shipped one by name: {mine} (for {other}: {', '.join(named[other])})" in text
