@@ -51,5 +51,9 @@ SUBCOMMANDS: tuple[Subcommand, ...] = (
     Subcommand("stress", "experiments.stress.command", "the numerical stress suite of the levels"),
     Subcommand("margins", "experiments.cli.margins",
                "a design's tolerance margins: per parameter, friction and part dimension"),
+    Subcommand("part", "experiments.cli.part",
+               "a part's mass, centre of mass, inertia, area and stable resting poses"),
+    Subcommand("family", "experiments.cli.family",
+               "device families: 'family new NAME --part FILE' writes one made for a part"),
 )
 # fmt: on

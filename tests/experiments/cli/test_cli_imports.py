@@ -119,6 +119,9 @@ BAD_VALUES = [
     (("margins", "--design", "nope"), "unknown design preset 'nope'"),
     (("margins", "--design", "1,2,3"), "a design has 12 values"),
     (("margins", "--out", "/proc/partfeeder-test"), "--out"),
+    (("part", "bowl"), "part 'bowl' is neither a file nor a shipped part"),
+    (("part", "cup", "--out", "x.txt"), "--out 'x.txt'"),
+    (("family", "new", "x", "--part", "bowl"), "part 'bowl' is neither a file nor"),
 ]
 
 
@@ -154,6 +157,17 @@ def test_simulate_without_out_draws_nothing():
     assert seen["code"] == 0, seen
     assert json.loads(seen["stdout"])["files"] == []
     assert "matplotlib" not in seen["modules"] and "ompl" not in seen["modules"]
+
+
+@pytest.mark.parametrize(
+    "args", [("part", "cup", "--json"), ("family", "new", "x", "--part", "cup")]
+)
+def test_part_and_family_new_compute_without_heavy_libraries(args):
+    """Mass properties and a family's text are geometry: no numba, OMPL or matplotlib (only
+    ``part --out`` draws)."""
+    seen = _probe(*args)
+    assert seen["code"] == 0, seen
+    assert not set(seen["modules"]) & set(HEAVY)
 
 
 def test_simulate_checks_the_recording_bound_of_the_dynamic_level():
