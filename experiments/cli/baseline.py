@@ -44,6 +44,9 @@ def baseline_of(text: str | None) -> tuple[str, list[float]]:
     except DesignError as exc:
         raise UsageError(f"--baseline: {exc}") from None
     label = text.strip() if "," not in text else "baseline"
+    from experiments.cli.scenes import warn_outside_box
+
+    warn_outside_box(text, "--baseline")
     return label, [float(v) for v in design.to_vector()]
 
 

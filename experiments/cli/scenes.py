@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -170,9 +171,49 @@ def load_scene(
     try:
         if scene_file is not None:
             return scene_of(scene_path(scene_file))
-        return design_scene("table3" if design is None else design)
+        scene = design_scene("table3" if design is None else design)
     except (DesignError, SceneError) as exc:
         raise UsageError(str(exc)) from None
+    warn_outside_box(design)
+    return scene
+
+
+def outside_box(text: str | None, flag: str = "--design") -> str | None:
+    """One line when the 12 values ``text`` gives (as ``--design`` or ``--baseline`` take
+    them) lie outside Table 2's box, naming each such parameter, its value and its range;
+    None inside the box, for a paper preset (the paper's own: fig5a's theta lies below the
+    box by the paper's choice) or for text that is no design. A design outside the box is
+    used as given, not refused: the paper plans some (fig5a) and margins reach past the box;
+    only a value the device cannot be built from (``PHYSICAL_BOUNDS``) is refused, by
+    :class:`~feeders.design.DesignParameters`."""
+    from feeders.design import DESIGN_SPACE, PARAMETER_NAMES, DesignError
+    from feeders.scene_spec import design_of_text
+
+    if text is None or "," not in text:
+        return None
+    try:
+        design = design_of_text(text)
+    except DesignError:
+        return None
+    outside = set(DESIGN_SPACE.outside(design))
+    if not outside:
+        return None
+    values = design.to_vector()
+    named = [
+        f"{name} = {value:g} is outside Table 2's box [{low:g}, {high:g}]"
+        for name, value, (low, high) in zip(
+            PARAMETER_NAMES, values, DESIGN_SPACE.bounds, strict=True
+        )
+        if name in outside
+    ]
+    return f"{flag}: {', '.join(named)}; used as given"
+
+
+def warn_outside_box(text: str | None, flag: str = "--design") -> None:
+    """:func:`outside_box`'s line on stderr, as ``partfeeder: warning: ...``, if any."""
+    line = outside_box(text, flag)
+    if line is not None:
+        print(f"partfeeder: warning: {line}", file=sys.stderr)
 
 
 def orientations(scene: Scene, choice: str) -> list[str]:

@@ -100,3 +100,80 @@ def test_partfeeder_plans_a_packaged_scene_by_name_outside_the_repository(tmp_pa
     )  # fmt: skip
     assert proc.returncode == 0, proc.stderr
     assert '"scene": "drop"' in proc.stdout and '"orientation": "above_pin"' in proc.stdout
+
+
+def _values(**changed: float) -> str:
+    """table3's 12 values as ``--design`` takes them, with ``changed`` ones replaced."""
+    from feeders.design import PARAMETER_NAMES, preset
+
+    values = dict(zip(PARAMETER_NAMES, preset("table3").to_vector(), strict=True))
+    return ",".join(repr(float(v)) for v in {**values, **changed}.values())
+
+
+def test_a_design_outside_table_2s_box_is_used_with_one_line_naming_the_value_and_box(
+    capsys,
+) -> None:
+    """Issue 39: ``--design`` with a = 9 planned without a word. Table 2's box for a is
+    [1.1, 1.2] (feeders.design.TABLE2_BOUNDS, the paper's Table 2)."""
+    scene = load_scene(_values(a=9.0), None)
+    err = capsys.readouterr().err
+    assert scene.name == "custom design"
+    assert err == (
+        "partfeeder: warning: --design: a = 9 is outside Table 2's box [1.1, 1.2]; used as given\n"
+    )
+
+
+def test_every_parameter_outside_the_box_is_named_in_the_one_line(capsys) -> None:
+    load_scene(_values(d=6.0, theta=0.2), None)
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1
+    assert "d = 6 is outside Table 2's box [2.5, 5], theta = 0.2 is outside" in err
+
+
+@pytest.mark.parametrize("design", [None, "table3", "fig5a", "table3-values"])
+def test_a_design_inside_the_box_or_a_paper_preset_says_nothing(capsys, design) -> None:
+    # fig5a's theta = 0.235 lies below the box: the paper's own design, named by its preset
+    load_scene(_values() if design == "table3-values" else design, None)
+    assert capsys.readouterr().err == ""
+
+
+def test_a_baseline_outside_the_box_gets_the_same_line(capsys) -> None:
+    from experiments.cli.baseline import baseline_of
+
+    label, values = baseline_of(_values(a=9.0))
+    assert (label, values[0]) == ("baseline", 9.0)
+    assert capsys.readouterr().err == (
+        "partfeeder: warning: --baseline: a = 9 is outside Table 2's box [1.1, 1.2]; "
+        "used as given\n"
+    )
+
+
+class Stopped(Exception):
+    """Raised where a command's work would start: its design was read by then."""
+
+
+@pytest.mark.parametrize(
+    ("command", "work"),
+    [
+        ("plan", "experiments.cli.plan.compile_once"),
+        ("simulate", "experiments.cli.simulate.compile_once"),
+        ("margins", "experiments.cli.margins.compile_once"),
+        ("draw", "experiments.pictures.scenes.scene_figure"),
+    ],
+)
+def test_each_command_that_takes_design_warns_before_its_work(
+    tmp_path, monkeypatch, capsys, command, work
+) -> None:
+    """The one shared check (scenes.load_scene) warns in every command taking ``--design``."""
+    from experiments.cli import entry
+
+    def stop(*args: object, **kwargs: object) -> None:
+        raise Stopped
+
+    monkeypatch.setattr(work, stop)
+    out = ["--out", str(tmp_path / "d.png")] if command == "draw" else []
+    with pytest.raises(Stopped):
+        entry.run([command, "--design", _values(a=9.0), *out])
+    assert capsys.readouterr().err == (
+        "partfeeder: warning: --design: a = 9 is outside Table 2's box [1.1, 1.2]; used as given\n"
+    )
