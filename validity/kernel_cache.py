@@ -15,19 +15,28 @@ A level's kernels are reached by exercising its public interface (:class:`validi
 and each level's own runs) for a few steps on the paper's table3 feeder: numba compiles a
 kernel and every kernel it calls when it is first called with new argument types, so the
 argument types matter, not the values or the branches taken.
+
+Processes that start at once on a cold cache (two test runs, a test run and a command) would
+each compile the same kernels: :func:`compile_kernels` holds a file lock beside numba's cache
+(:func:`lock_path`), exclusive for the first comer, so the others wait for its compile and then
+load what it saved. The kernel releases the lock when its process ends, however it ends.
 """
 
 from __future__ import annotations
 
+import os
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 COMPILE_EVENT = "numba:compile"  # numba's event for a compile that missed the cache
 EXERCISE_STEPS = 2  # steps of h per exercised run: enough to call every kernel's entry
+LOCK_NAME = "partfeeder-kernels.lock"
 
 
 @dataclass(frozen=True)
@@ -135,6 +144,48 @@ def exercise(level_name: str) -> None:
         simulate(state, duration=duration, y_stop=0.0, rest_speed=1e-3)
 
 
+def lock_path() -> Path:
+    """The lock file of :func:`compile_kernels`, in the directory numba saves this package's
+    kernels to: ``NUMBA_CACHE_DIR`` when set, else ``__pycache__`` beside the sources when it
+    is writable; else (numba then uses a per-user cache) a per-user file in the temporary
+    directory. Processes on different caches never wait for each other."""
+    from numba.core.config import CACHE_DIR
+
+    if CACHE_DIR:
+        return Path(CACHE_DIR) / LOCK_NAME
+    in_tree = Path(__file__).resolve().parent / "__pycache__"
+    try:
+        in_tree.mkdir(exist_ok=True)
+    except OSError:
+        pass
+    if os.access(in_tree, os.W_OK):
+        return in_tree / LOCK_NAME
+    return Path(tempfile.gettempdir()) / f"{LOCK_NAME}.{os.getuid()}"
+
+
+@contextmanager
+def one_compile_at_a_time(path: Path) -> Iterator[None]:
+    """Within the block, no other process's block on ``path`` compiles at the same time: the
+    first comer holds ``path`` locked exclusively (``flock``); a process that finds it held
+    waits for its release and then shares the lock with any other waiter (they load what the
+    first compiled, in parallel). Without ``fcntl`` (not POSIX), no lock."""
+    try:
+        import fcntl
+    except ImportError:
+        yield
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "a") as handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            fcntl.flock(handle, fcntl.LOCK_SH)  # another compiles (or loads): wait for it
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
 def compile_kernels(
     levels: Iterable[str],
     on_first_compile: Callable[[], object] | None = None,
@@ -145,7 +196,8 @@ def compile_kernels(
     on this machine load them from the cache. ``on_first_compile()`` is called once, when
     the first kernel missing from the cache starts compiling (the moment to tell a user why
     they wait); ``on_level(name)`` after each level's kernels are ready (a progress bar's
-    step)."""
+    step). Another process compiling at the same time is waited for, then loaded from
+    (:func:`one_compile_at_a_time`)."""
     chosen = tuple(dict.fromkeys(levels))
     from validity import LEVELS
 
@@ -154,7 +206,7 @@ def compile_kernels(
         raise ValueError(f"unknown level {unknown[0]!r}; levels: {', '.join(LEVELS)}")
     start = time.perf_counter()
     misses0, hits0 = kernel_counts()
-    with _on_first_compile(on_first_compile):
+    with one_compile_at_a_time(lock_path()), _on_first_compile(on_first_compile):
         for name in chosen:
             exercise(name)
             if on_level is not None:

@@ -14,6 +14,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import kernel_jobs
@@ -31,6 +32,27 @@ announced = []
 load = compile_kernels(sys.argv[1].split(","), on_first_compile=lambda: announced.append(1))
 print(json.dumps({"compiled": load.compiled, "loaded": load.loaded, "announced": len(announced)}))
 """
+
+
+# The same, its first compile paused (once it holds the lock) until a line on stdin: a second
+# process is started meanwhile, a count of events, not a time, making the two concurrent.
+COMPILE_PAUSED = """
+import json, sys
+from validity.kernel_cache import compile_kernels
+def paused():
+    print("compiling", flush=True)
+    sys.stdin.readline()
+load = compile_kernels(sys.argv[1].split(","), on_first_compile=paused)
+print(json.dumps({"compiled": load.compiled, "loaded": load.loaded}))
+"""
+HANG_GUARD_S = 600.0  # only a failure waits this long (a loaded machine compiles in ~100 s)
+
+
+def _waits_for_a_lock(pid: int) -> bool:
+    """``pid`` is blocked waiting for a file lock (the kernel's table of locks: a waiter's
+    line has ``->``)."""
+    with open("/proc/locks") as f:
+        return any("->" in line and line.split()[5] == str(pid) for line in f)
 
 
 def _compile_in_a_process(levels: str, cache: Path) -> dict:
@@ -56,6 +78,47 @@ def cold_cache(tmp_path, monkeypatch) -> Path:
     return cache
 
 
+@pytest.mark.skipif(not os.path.exists("/proc/locks"), reason="reads the kernel's lock table")
+def test_a_process_that_starts_while_another_compiles_waits_and_only_loads(cold_cache):
+    """Two processes on one cold cache at once (two test runs, a run and a command): the
+    first compiles; the second, started while the first's compile is under way, waits for it
+    and loads every kernel, compiling none (issue 39: without the lock each compiled them
+    all). The necessary conditions' kernels: the fewest to compile."""
+    command = [sys.executable, "-c", COMPILE_PAUSED, "necessary"]
+    first = subprocess.Popen(
+        command, cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    )
+    second = None
+    try:
+        assert first.stdin is not None and first.stdout is not None
+        assert first.stdout.readline().strip() == "compiling"  # it holds the lock
+        second = subprocess.Popen(
+            command, cwd=ROOT, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, text=True
+        )  # were it to compile (no lock), its pause would end at once
+        deadline = time.monotonic() + HANG_GUARD_S
+        while second.poll() is None and not _waits_for_a_lock(second.pid):
+            assert time.monotonic() < deadline, "the second process neither waited nor ended"
+            time.sleep(0.05)
+        first.stdin.write("go on\n")
+        first.stdin.flush()
+        out_first, _ = first.communicate(timeout=HANG_GUARD_S)
+        out_second, _ = second.communicate(timeout=HANG_GUARD_S)
+    finally:
+        for process in (first, second):
+            if process is not None and process.poll() is None:
+                process.kill()
+                process.wait()
+    assert first.returncode == 0 and second.returncode == 0
+    compiled = json.loads(out_first.strip().splitlines()[-1])
+    loaded = json.loads(out_second.strip().splitlines()[-1])
+    assert compiled["compiled"] > 0 and compiled["loaded"] == 0
+    assert "compiling" not in out_first  # one notice, however many kernels compile
+    assert list(cold_cache.rglob("*.nbi"))  # numba's index files, in NUMBA_CACHE_DIR
+    assert "compiling" not in out_second  # its compile never started
+    assert loaded["compiled"] == 0 and loaded["loaded"] > 0
+
+
+@pytest.mark.slow  # the concurrent test above starts the second process sooner: the same rule
 def test_a_cold_cache_is_compiled_once_then_only_loaded(cold_cache):
     first = _compile_in_a_process("geometric", cold_cache)
     assert first["compiled"] > 0 and first["loaded"] == 0
