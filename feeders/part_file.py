@@ -16,8 +16,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from feeders.composite_part import CompositePart, CompositePartError
 from feeders.fields import FieldError, read_yaml, shown
-from feeders.part import DEFAULT_HEAVY_FRACTION, DEFAULT_LENGTH, DEFAULT_PEG, DEFAULT_WIDTH
+from feeders.part import (
+    DEFAULT_HEAVY_FRACTION,
+    DEFAULT_LENGTH,
+    DEFAULT_PEG,
+    DEFAULT_WIDTH,
+    Peg,
+)
 from feeders.part_shape import Part
 from feeders.scene_yaml import COMPOSITE_KEYS, PEG_KEYS, environment_from_dict
 
@@ -50,9 +57,18 @@ class PartSource:
 def part_of_spec(spec: Any, where: str = "part") -> Part:
     """The part of a family's ``part:`` = ``spec``; PartFileError beginning with ``where``."""
     try:
-        return environment_from_dict({"part": spec}, composite=True)["part"]
+        part = environment_from_dict({"part": spec}, composite=True)["part"]
     except FieldError as exc:
         raise PartFileError(f"{where}: {exc}") from None
+    if isinstance(part, Peg):  # measured as its two halves: the light one must have mass
+        try:
+            CompositePart.from_peg(part)
+        except CompositePartError as exc:
+            raise PartFileError(
+                f"{where}: a peg is measured as its two halves and its light half cannot be "
+                f"one ({exc}): give part.heavy_fraction below 1"
+            ) from None
+    return part
 
 
 def shipped_part(name: str) -> PartSource | None:

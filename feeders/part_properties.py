@@ -82,12 +82,11 @@ def mass_properties(part: Part) -> MassProperties:
     """Mass, area, centre of mass, inertia, extent, hull and stable resting poses of ``part``."""
     pieces = as_composite(part)
     hull = pieces.convex_hull()
-    extent = (
-        float(hull[:, 0].min()),
-        float(hull[:, 0].max()),
-        float(hull[:, 1].min()),
-        float(hull[:, 1].max()),
-    )
+    points = np.vstack(pieces.body_polygons()) if pieces.polygons else np.zeros((0, 2))
+    discs = pieces.body_discs()
+    low = np.vstack([points, discs[:, :2] - discs[:, 2:]]).min(axis=0)  # exact for discs too,
+    high = np.vstack([points, discs[:, :2] + discs[:, 2:]]).max(axis=0)  # unlike the hull
+    extent = (float(low[0]), float(high[0]), float(low[1]), float(high[1]))
     outline = part_geometry(pieces).boundary  # body frame
     tol = 1e-9 * pieces.bounding_radius()
     resting = tuple(

@@ -53,6 +53,7 @@ def test_a_shipped_family_file_serves_as_a_part_file():
         ("part: {outline: [[0, 0], [1, 0], [1, 1]], density: 0}\n", "part.density = 0"),
         ("part: bowl\n", "not a packaged part"),
         ("- 1\n", "is not a part"),
+        ("part: {heavy_fraction: 1.0}\n", "give part.heavy_fraction below 1"),
     ],
 )
 def test_a_bad_part_file_is_one_line_naming_the_file(tmp_path, content, says):

@@ -100,6 +100,7 @@ def test_disc_inertia_is_the_closed_form_and_it_has_no_resting_pose():
     assert props.inertia == pytest.approx(m * 0.25 / 2, rel=1e-12)
     np.testing.assert_allclose(props.com, [1, 2], atol=1e-12)
     assert props.resting == ()  # neutral: it rolls
+    assert props.extent == pytest.approx((-0.5, 0.5, -0.5, 0.5), abs=1e-15)  # not the hull's
 
 
 def test_peg_is_taken_as_its_two_halves():
