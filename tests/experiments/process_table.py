@@ -1,11 +1,14 @@
 """The kernel's process table, as the signal tests read it: who is alive, whose child it is,
-and a start-up that makes a command interruptible as from a terminal."""
+and a start-up that makes a command (or this process, for a test) interruptible as from a
+terminal."""
 
 from __future__ import annotations
 
 import os
 import signal
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 
 def processes() -> dict[int, int]:
@@ -43,3 +46,17 @@ def interruptible() -> None:
     """As from a terminal: a test runner started in the background passes SIGINT on ignored,
     and Python then never turns Ctrl-C into KeyboardInterrupt (a ``preexec_fn``)."""
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+@contextmanager
+def sigint_as_from_a_terminal() -> Iterator[None]:
+    """Within the block, Ctrl-C raises KeyboardInterrupt in this process, as in a test run
+    started from a terminal; a test runner started in the background (``nohup ... &``)
+    inherits SIGINT ignored, and a test of what Ctrl-C does in this process then fails
+    (issue 39). The runner's own disposition is restored afterwards."""
+    previous = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)

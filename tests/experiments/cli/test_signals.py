@@ -27,6 +27,7 @@ import time
 from pathlib import Path
 
 import pytest
+from process_table import interruptible
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -58,12 +59,6 @@ main(["bench"])
 """
 
 
-def _interruptible() -> None:
-    """SIGINT at its default, as from a terminal: a runner started in the background passes
-    SIGINT ignored, and Python then never raises KeyboardInterrupt."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def _start(argv: list[str], env: dict[str, str] | None = None) -> subprocess.Popen:
     return subprocess.Popen(
         [sys.executable, *argv],
@@ -73,7 +68,7 @@ def _start(argv: list[str], env: dict[str, str] | None = None) -> subprocess.Pop
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
-        preexec_fn=_interruptible,
+        preexec_fn=interruptible,
     )
 
 

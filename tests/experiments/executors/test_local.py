@@ -7,10 +7,19 @@ import signal
 
 import pytest
 from pool_jobs import die_on_three, fail_on_three, sigint_disposition, square
+from process_table import sigint_as_from_a_terminal
 
 from experiments.executors.local import JobFailed, LocalPool, map_jobs
 
 JOBS = list(range(12))
+
+
+@pytest.fixture
+def ctrl_c_raises():
+    """This process turns Ctrl-C into KeyboardInterrupt, as from a terminal, even when the
+    test run was started in the background with SIGINT ignored."""
+    with sigint_as_from_a_terminal():
+        yield
 
 
 @pytest.mark.parametrize("workers", [1, 2])
@@ -41,7 +50,7 @@ def test_a_job_that_kills_its_worker_is_named_with_the_signal_after_its_attempts
     assert "died 2 times" in failed.value.reason and "SIGKILL" in failed.value.reason
 
 
-def test_pool_workers_ignore_sigint_and_the_calling_process_does_not() -> None:
+def test_pool_workers_ignore_sigint_and_the_calling_process_does_not(ctrl_c_raises) -> None:
     """Ctrl-C is the parent's: workers ignore it, and running jobs here (one worker) must
     not make the calling process ignore it."""
     assert map_jobs(sigint_disposition, [0, 1], 2) == [True, True]
@@ -49,7 +58,7 @@ def test_pool_workers_ignore_sigint_and_the_calling_process_does_not() -> None:
     assert signal.getsignal(signal.SIGINT) != signal.SIG_IGN
 
 
-def test_a_stop_request_ends_the_pool_without_waiting_for_long_jobs() -> None:
+def test_a_stop_request_ends_the_pool_without_waiting_for_long_jobs(ctrl_c_raises) -> None:
     """Issue 37, item 6: Ctrl-C and SIGTERM waited for the jobs in flight (30 s for
     ``margins``): the pool's exit shut down with ``wait=True``. Now its workers are
     terminated; what was handed on before the stop is kept. Generous bound: a loaded
