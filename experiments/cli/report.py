@@ -147,7 +147,7 @@ def finish(
     )
     from experiments.sweep.summary import summary_table
 
-    quiet = bool(getattr(args, "quiet", False))
+    quiet = bool(getattr(args, "quiet", False) or getattr(args, "json", False))  # as run's bars
     results = out / "results.sqlite"
     results_db.check_database(results)  # refused as the summary would refuse it
     found = database_family(results)  # --baseline's meaning: the feeder's, or a family's

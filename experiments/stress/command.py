@@ -48,6 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--replay", type=Path, default=None, help="run one case file again")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar or lines")
 
 
 def _levels(text: str) -> tuple[str, ...]:
@@ -105,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
     from experiments.stress.report import summary, table, write_case
 
     composite = args.cases // 3 if args.composite is None else args.composite
-    update, close = progress_bar(args.cases + composite)
+    update, close = (None, lambda: None) if args.quiet else progress_bar(args.cases + composite)
     try:
         results = run_cases(args.seed, args.cases, levels, args.workers, update, composite)
     finally:

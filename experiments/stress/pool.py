@@ -6,7 +6,6 @@ come back. Results are in index order whatever the number of workers."""
 from __future__ import annotations
 
 import functools
-import sys
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -84,9 +83,8 @@ def run_cases(
 
 
 def progress_bar(total: int) -> tuple[Callable[[int], None] | None, Callable[[], None]]:
-    """``(update, close)`` of a tqdm bar on stderr when it is a terminal, else no bar."""
-    if not sys.stderr.isatty():
-        return None, lambda: None
+    """``(update, close)`` of a bar over the cases on stderr: redrawn on a terminal, lines
+    with done/total and the time left in a log (:mod:`experiments.progress`)."""
     from experiments.progress import bar
 
     cases = bar(total, "stress", "case")

@@ -81,7 +81,7 @@ def _command(job: str, tmp_path: Path) -> list[str]:
         config = tmp_path / "config.yaml"
         config.write_text(json.dumps(OPTIMIZE))  # JSON is YAML
         return [sys.executable, "-c", CLI, "optimize", str(config), "--out", str(tmp_path / "out")]
-    return [sys.executable, "-c", CLI, "stress", "--cases", "100000", "--workers", "2"]
+    return [sys.executable, "-c", CLI, "stress", "--cases", "100000", "--workers", "2", "--quiet"]
 
 
 def _start(command: list[str], when: str, database: Path | None = None) -> subprocess.Popen:

@@ -23,9 +23,16 @@ PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 FIG1_CONFIG = "family: fig1\ndesigns: {count: 2, seed: 1}\nladder: [{level: passive}]\n"
 
 
+class Terminal(io.StringIO):
+    """What a terminal would show: the bar is drawn, not written as log lines."""
+
+    def isatty(self) -> bool:
+        return True
+
+
 def test_the_margins_bar_has_one_step_per_axis_from_the_start() -> None:
     assert report_cli.MARGINS_AXES == len(axes())
-    stream = io.StringIO()
+    stream = Terminal()
     progress = report_cli.MarginsProgress(quiet=False, stream=stream)
     progress("margins", {"design": "design 3", "axes": report_cli.MARGINS_AXES})
     assert "margins of design 3:   0%|" in stream.getvalue()

@@ -27,7 +27,7 @@ def _cpu_seconds(pid: int) -> float:
 
 def test_ctrl_c_stops_a_stress_run_in_one_process_with_one_line() -> None:
     process = subprocess.Popen(
-        [sys.executable, "-c", CLI, "stress", "--cases", "1000000", "--workers", "1"],
+        [sys.executable, "-c", CLI, "stress", "--cases", "1000000", "--workers", "1", "--quiet"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
