@@ -158,7 +158,9 @@ def text_table(data: dict) -> str:
         f"[{lo:.3f}, {hi:.3f}] (target {data['target']:g})"
     ]
     if not data["works"]:
-        lines.append("the design does not work at nominal: no margins")
+        from experiments.drop.sequential import short_of_working
+
+        lines.append(f"the design {short_of_working(v['decision'])} at nominal: no margins")
         return "\n".join(line.rstrip() for line in lines)
     lines.append(
         f"margins: values where the estimated P(both) over {data['drops_per_value']} "

@@ -28,6 +28,18 @@ from dataclasses import dataclass
 WORKS, FAILS, UNDECIDED = "works", "fails", "undecided"
 
 
+def short_of_working(decision: str | None) -> str:
+    """What a decision other than ``works`` says of its design, for a sentence ("the optimum
+    ... on its 4 fresh trials"): ``fails`` "does not work", ``undecided`` "is undecided (too
+    few trials to tell whether it works at the target)", anything else "has no verdict".
+    An undecided design is not one that does not work (issue 39)."""
+    if decision == FAILS:
+        return "does not work"
+    if decision == UNDECIDED:
+        return "is undecided (too few trials to tell whether it works at the target)"
+    return "has no verdict"
+
+
 @dataclass(frozen=True)
 class Wald:
     """The test between ``works_p`` and ``fails_p`` (0 < fails_p < works_p < 1) with error

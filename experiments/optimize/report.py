@@ -26,7 +26,7 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from experiments.report_kit.cells import DASH, cell, number
+from experiments.report_kit.cells import DASH, cell, number, quantity
 from experiments.report_kit.comparison_section import comparison_html
 from experiments.report_kit.margins_section import margins_html, margins_sentence
 from experiments.report_kit.page import STYLE, figure_html, html_table
@@ -230,7 +230,7 @@ def report_figures(config, results: dict[str, Any], figures_dir: Path) -> dict[s
 
     figures: dict[str, Path] = {}
     comparison = results.get("comparison")
-    if comparison:
+    if comparison and not results.get("optimum_is_baseline"):  # no outline over itself
         environment = environment_from_dict(config.feeder)
         figures.update(comparison_figures(comparison, figures_dir, **environment))
     baseline = results.get("baseline_margins")  # the robust goal's: table3's beside
@@ -405,7 +405,7 @@ def family_sentence(results: dict[str, Any]) -> str:
         parts.append(
             f"{label}: {verdict['decision']}, both entries {both['successes']} of "
             f"{verdict['drops']} fresh trials, P(both) 95% interval {_interval(both['interval'])}, "
-            f"mean Eq. 10 G {cell(verdict.get('mean_g'), '.2f')} s."
+            f"mean Eq. 10 G {quantity(verdict.get('mean_g'), 's', '.2f')}."
         )
     robust = results.get("robust")
     chosen = robust_chosen_sentence(results) if robust else chosen_sentence(results)
@@ -463,6 +463,9 @@ def _recommendation(results: dict[str, Any]) -> str:
     robust = results.get("robust")
     if robust:
         notes = [("What it maximised", robust_sentence(results))]
+    same = same_design_sentence(results)
+    if same:
+        notes.insert(0, ("The baseline itself", same[0].upper() + same[1:] + "."))
     chosen = robust_chosen_sentence(results) if robust else chosen_sentence(results)
     return recommendation_html(OPTIMUM, comparison, margins, chosen, notes=notes)
 
@@ -597,8 +600,8 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
         f"<h1>Design optimisation: {e(results['name'])}</h1>",
         f'<p class="note">Generated {e(time.strftime("%Y-%m-%d %H:%M:%S"))}; '
         f"{cell(results['evaluations'])} designs evaluated, "
-        f"{cell(results.get('worker_time_s'), '.1f')} s of worker time; this command "
-        f"{cell(results.get('wall_time_s'), '.1f')} s.</p>",
+        f"{quantity(results.get('worker_time_s'), 's', '.1f')} of worker time; this command "
+        f"{quantity(results.get('wall_time_s'), 's', '.1f')}.</p>",
         _recommendation(results),
         *(comparison_html(comparison, figures) if comparison else []),
         *_absent("The comparison", results.get("comparison_absent")),
@@ -634,6 +637,18 @@ def html_page(results: dict[str, Any], figures: dict[str, Path]) -> str:
     return "\n".join(parts)
 
 
+def same_design_sentence(results: dict[str, Any]) -> str | None:
+    """When the optimum is the baseline itself (``optimum_is_baseline``), one sentence that
+    says so: its rows are one design's, and the report draws no outline over itself."""
+    if not results.get("optimum_is_baseline"):
+        return None
+    baseline = labels(results)[1]
+    return (
+        f"the optimum is the baseline, {baseline}, itself: the search found no better design "
+        "(a larger --evaluations budget or other starts, --from SWEEP_DIR, may)"
+    )
+
+
 def summary_text(results: dict[str, Any]) -> str:
     """The results as a few plain-text tables, for the terminal."""
     lines = [f"optimisation {results['name']}: {results['evaluations']} designs evaluated"]
@@ -646,6 +661,9 @@ def summary_text(results: dict[str, Any]) -> str:
     lines.append(f"{'parameter':>10} {box:>16} {baseline:>9} {'optimum':>9}")
     for row in design_table_rows(results):
         lines.append(f"{row[0]:>10} {row[1]:>16} {row[2]:>9} {row[3]:>9}")
+    same = same_design_sentence(results)
+    if same:
+        lines.append(same)
     lines.append("")
     lines.append(" | ".join(EQ10_HEADERS))
     for row in eq10_rows(results):
@@ -677,6 +695,6 @@ def margins_line(results: dict[str, Any]) -> str:
     cost = margins.get("cost") or {}
     return (
         f"margins of the optimum: {margins_sentence(margins)}; cost {cell(cost.get('drops'))} "
-        f"drops, {cell(cost.get('wall_time_s'), '.1f')} s on {cell(cost.get('workers'))} "
+        f"drops, {quantity(cost.get('wall_time_s'), 's', '.1f')} on {cell(cost.get('workers'))} "
         "worker(s)"
     )

@@ -39,6 +39,7 @@ import numpy as np
 
 from experiments.drop.family_verdict import entry_names
 from experiments.drop.passive import eq10_objective, passive_drop
+from experiments.drop.sequential import short_of_working
 from experiments.drop.verdict import Verdict, classes_of
 from experiments.executors import open_pool
 from experiments.family_config import family_default, family_record
@@ -651,6 +652,10 @@ def results(
         verdicts[name] = stored
         out[name] = _design_entry(config, key, values[key], stored, space)
     out["candidates"] = _candidates(db, config, values, out.get(OPTIMUM), space)
+    optimum_entry = out.get(OPTIMUM)
+    out["optimum_is_baseline"] = optimum_entry is not None and same_design(
+        [optimum_entry["values"][n] for n in space.names], base_values, space
+    )
     out["comparison"] = None
     if space.family is not None:
         out["comparison_absent"] = FAMILY_NO_COMPARISON
@@ -700,6 +705,17 @@ def robust_results(db, config: OptimizeConfig, out: dict[str, Any], base_key: st
     }
 
 
+SAME_DESIGN = 1e-9  # of each parameter's box width: closer is the same design
+
+
+def same_design(a: list[float], b: list[float], space: Designed) -> bool:
+    """Whether two designs are one, each parameter within ``SAME_DESIGN`` of its box's width
+    (a method's first point is its start moved to the unit cube and back: table3's gx came
+    back as 0.7329999999999999, another store key for the same design)."""
+    width = space.high - space.low
+    return bool(np.all(np.abs(np.asarray(a) - np.asarray(b)) <= SAME_DESIGN * width))
+
+
 FAMILY_NO_COMPARISON = (
     "the comparison section (parameter differences as fractions of Table 2's box, the "
     "designs drawn over each other, its entries) is the 12-parameter feeder's; a device "
@@ -717,8 +733,8 @@ def _margins(
     verdict = optimum.get("verdict") or {}
     if not verdict.get("works"):
         return None, (
-            f"the optimum does not work on its {verdict.get('drops', '?')} fresh trials "
-            f"(decision: {verdict.get('decision', 'none')}), so it has no margins"
+            f"the optimum {short_of_working(verdict.get('decision'))} on its "
+            f"{verdict.get('drops', '?')} fresh trials, so it has no margins"
         )
     key = store.design_key([optimum["values"][n] for n in space.names])
     digest = robust_settings_key(config) if config.goal == ROBUSTNESS else settings_key(config)

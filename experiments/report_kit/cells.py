@@ -37,6 +37,16 @@ def cell(value: Any, spec: str = ".3g") -> str:
     return format(x, spec)
 
 
+UNKNOWN = "n/a"  # an unknown quantity in a sentence (a table's cell shows DASH)
+
+
+def quantity(value: Any, unit: str, spec: str = ".3g") -> str:
+    """A number with its unit for a sentence ("1.25 s"), or ``n/a`` alone when it is unknown
+    (a mean exit time of an entry with no successful drop): never a unit after a dash."""
+    text = cell(value, spec)
+    return UNKNOWN if text == DASH else f"{text} {unit}"
+
+
 def interval(ci: Any, spec: str = ".2f") -> str:
     """A confidence interval ``[low, high]`` by ``spec``; a dash unless both ends are numbers."""
     if not isinstance(ci, (list, tuple)) or len(ci) != 2:

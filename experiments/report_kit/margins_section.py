@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from experiments.margins.robustness import SIDES, at_edge, room
-from experiments.report_kit.cells import DASH, cell
+from experiments.report_kit.cells import DASH, cell, quantity
 from experiments.report_kit.page import figure_html, html_table
 
 MARGINS = "margins"
@@ -48,7 +48,7 @@ def robustness_sentence(margins: dict[str, Any], baseline: dict[str, Any] | None
     def said(m: dict[str, Any]) -> str:
         r = robustness(m)
         if not m.get("works"):
-            return f"{m.get('design', 'the design')}: none (it does not work on these draws)"
+            return f"{m.get('design', 'the design')}: none (it {_short(m)} on these draws)"
         if r.unlimited:
             return f"{m.get('design')}: every side reaches the box's edge"
         where = f"{r.axis} {r.side}" if r.side else f"{r.axis} has no margin"
@@ -101,13 +101,21 @@ def _percent(fraction: float | None, edge: bool) -> str:
     return f"{'≥ ' if edge else ''}{100.0 * fraction:.1f}%"
 
 
+def _short(margins: dict[str, Any]) -> str:
+    """What the verdict of a design with no margins says of it: it does not work, or it is
+    undecided (:func:`experiments.drop.sequential.short_of_working`)."""
+    from experiments.drop.sequential import short_of_working
+
+    return short_of_working((margins.get("verdict") or {}).get("decision"))
+
+
 def margins_sentence(margins: dict[str, Any]) -> str:
     """One sentence: the tightest axes with their room either side (or that the design has
     no margins, and why)."""
     if not margins.get("works"):
         return (
-            f"{margins.get('design', 'the design')} does not work at nominal on the margins' "
-            "draws, so it has no margins"
+            f"{margins.get('design', 'the design')} {_short(margins)} at nominal on the "
+            "margins' draws, so it has no margins"
         )
     parts = []
     for t in tightest(margins):
@@ -151,7 +159,7 @@ def margins_html(
         f"<p>{e(meaning[:1].upper() + meaning[1:])}. "
         f"Target {cell(margins.get('target'))}, {cell(margins.get('drops_per_value'))} "
         f"trials per value (seed {cell(margins.get('seed'))}). Cost: "
-        f"{cell(cost.get('drops'))} drops, {cell(cost.get('wall_time_s'), '.1f')} s on "
+        f"{cell(cost.get('drops'))} drops, {quantity(cost.get('wall_time_s'), 's', '.1f')} on "
         f"{cell(cost.get('workers'))} worker(s).</p>",
     ]
     if not margins.get("works"):

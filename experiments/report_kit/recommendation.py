@@ -15,7 +15,7 @@ import html
 from collections.abc import Sequence
 from typing import Any
 
-from experiments.report_kit.cells import cell
+from experiments.report_kit.cells import cell, quantity
 from experiments.report_kit.comparison_section import confirmation
 from experiments.report_kit.margins_section import margins_sentence, robustness_sentence
 from experiments.report_kit.verdict_section import entries_of
@@ -28,7 +28,7 @@ def _exit_times(entry: dict[str, Any]) -> str:
     verdict = entry.get("verdict") or {}
     per = verdict.get("orientations") or {}
     return ", ".join(
-        f"{o.replace('_', ' ')} {cell((per.get(o) or {}).get('mean_exit_time_s'), '.2f')} s"
+        f"{o.replace('_', ' ')} {quantity((per.get(o) or {}).get('mean_exit_time_s'), 's', '.2f')}"
         for o in entries_of(verdict)
     )
 

@@ -9,7 +9,7 @@ import html
 import time
 from pathlib import Path
 
-from experiments.report_kit.cells import DASH, cell, interval, number
+from experiments.report_kit.cells import DASH, cell, interval, number, quantity
 from experiments.report_kit.margins_section import margins_html
 from experiments.report_kit.page import STYLE, figure_html, html_table
 from experiments.report_kit.recommendation import recommendation_html
@@ -28,9 +28,9 @@ def _speedup_text(speedup: dict | None) -> str:
     top = speedup.get("top_level") or "the top level"
     basis = str(speedup.get("basis", "the holdout")).removeprefix("the ")
     return (
-        f"The ladder up to {top} cost {cell(ladder_cost)} s of worker time; evaluating every "
-        f"design at {top} alone would cost about "
-        f"{cell(dynamic_cost)} s (95% CI {interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
+        f"The ladder up to {top} cost {quantity(ladder_cost, 's')} of worker time; evaluating "
+        f"every design at {top} alone would cost about {quantity(dynamic_cost, 's')} "
+        f"(95% CI {interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
         f"a speed-up of {cell(factor)}x (95% CI {interval(speedup.get('speedup_ci'), '.3g')}), "
         f"estimated on {cell(speedup.get('holdout_n'))} {basis} designs."
     )

@@ -222,7 +222,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                     cell(passive.get("degenerate")),
                     cell(passive.get("works_fraction"), ".3f"),
                     interval(passive.get("works_ci")),
-                    str(passive.get("works_basis", DASH)),
+                    f"{passive.get('works_basis', DASH)} (n = {cell(passive.get('works_n'))})",
                     cell(passive.get("drops")),
                     cell(passive.get("mean_trials"), ".3g"),
                     cell(passive.get("drops_per_s"), ".3g"),

@@ -323,6 +323,7 @@ def _passive_summary(ladder, samples, status, wall, stored) -> dict[str, Any] | 
         "works_ci": fraction["ci"],
         "works_basis": "every design" if first else _basis(holdout, audit),
         "works_n": len(basis),
+        "works_in_basis": works,
         "drops": drops,
         "mean_trials": sum(trials) / len(trials) if trials else None,
         "drops_per_s": drops / seconds if seconds > 0 else None,
@@ -604,23 +605,21 @@ def summary_table(summary: dict[str, Any]) -> str:
         )
     p = summary.get("passive")
     if p and p["works_n"]:
-        lo, hi = p["works_ci"]
+        trials, rate = p.get("mean_trials"), p.get("drops_per_s")
         lines.append(
-            f"passive verdict: {p['works']} of {p['evaluated']} designs judged work "
-            f"({_pct(p['works_fraction'])} [{_pct(lo)}, {_pct(hi)}] of {p['works_basis']}, "
-            f"n = {p['works_n']}); "
-            f"{p['undecided']} undecided; {p['mean_trials']:.1f} trials per verdict, "
-            f"{p['drops_per_s']:.0f} drops/s"
+            f"passive verdict: {passive_counts(p)}; "
+            f"{'n/a' if trials is None else f'{trials:.1f}'} trials per verdict, "
+            f"{'n/a' if rate is None else f'{rate:.0f}'} drops/s"
         )
     for pipe in summary.get("pipelines") or []:
-        cost = "-" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f}"
+        cost = "n/a" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f} s/design"
         speedup = "-" if pipe["speedup"] is None else f"{pipe['speedup']:.2f}x"
         low, high = pipe.get("speedup_ci") or [None, None]
         if low is not None and high is not None:
             speedup += f" [{low:.2f}, {high:.2f}]"
         lost = pipe.get("thrown_away") or []
         lines.append(
-            f"pipeline {' -> '.join(pipe['rungs'])}: {cost} s/design "
+            f"pipeline {' -> '.join(pipe['rungs'])}: {cost} "
             f"({pipe.get('basis', 'the holdout').removeprefix('the ')} n={pipe['n']}), "
             f"recall {_pct(pipe['recall'])} [{_pct(pipe['recall_ci'][0])}, "
             f"{_pct(pipe['recall_ci'][1])}] {_recall_basis(pipe)}, speed-up {speedup}"
@@ -630,7 +629,7 @@ def summary_table(summary: dict[str, Any]) -> str:
     if lost:
         lines.append(thrown_away_sentence(lost))
     for b in summary["best"][:3]:
-        exit_time = "-" if b["exit_time_s"] is None else f"{b['exit_time_s']:.2f} s"
+        exit_time = "n/a" if b["exit_time_s"] is None else f"{b['exit_time_s']:.2f} s"
         if "verdict" in b:
             lo, hi = b["verdict"]["both"]["interval"]
             lines.append(
@@ -642,6 +641,25 @@ def summary_table(summary: dict[str, Any]) -> str:
     for q in summary["quarantined"]:
         lines.append(f"quarantined: design {q['design_id']} at {q['level']}: {q['reason']}")
     return "\n".join(lines)
+
+
+def passive_counts(p: dict[str, Any]) -> str:
+    """The passive verdict's counts, each with its own denominator named (issue 39: "4 of 30
+    designs judged work (4 % [2 %, 10 %] of every design, n = 103)" read as three): the
+    designs judged and how many work or are undecided, then the fraction that works of the
+    basis, with its count: every design (the judged and those a sound rung proved to fail:
+    none of them works) or the audit or holdout (designs judged whatever the rungs below said)."""
+    lo, hi = p["works_ci"]
+    n = p["works_n"]
+    basis = p["works_basis"]
+    works = p.get("works_in_basis", round(p["works_fraction"] * n))
+    if basis == "every design":
+        proven = n - p["evaluated"]
+        basis = f"every design ({p['evaluated']} judged, {proven} proven to fail below)"
+    return (
+        f"{p['works']} of {p['evaluated']} designs judged work, {p['undecided']} undecided; "
+        f"{works} of {n} in {basis} work: {_pct(p['works_fraction'])} [{_pct(lo)}, {_pct(hi)}]"
+    )
 
 
 def _recall_basis(row: dict[str, Any]) -> str:

@@ -50,3 +50,20 @@ def test_a_design_that_does_not_work_prints_its_verdict_and_no_margins():
     done = run_cli("margins", "--design", "fig7a", "--drops", "2", "--workers", "1")
     assert done.returncode == 0, done.stderr
     assert "FAILS" in done.stdout and "no margins" in done.stdout
+
+
+def test_the_text_of_a_design_with_no_margins_says_what_its_verdict_decided():
+    """Issue 39: "does not work" was said of an undecided design too."""
+    from experiments.cli.margins import text_table
+
+    def data(decision: str) -> dict:
+        verdict = {"drops": 3, "decision": decision, "both": {"p": 1.0, "interval": [0.3, 1]}}
+        return {"design": "table3", "seed": 0, "target": 0.9, "verdict": verdict, "works": False}
+
+    assert text_table(data("undecided")).splitlines()[-1] == (
+        "the design is undecided (too few trials to tell whether it works at the target) at "
+        "nominal: no margins"
+    )
+    assert text_table(data("fails")).splitlines()[-1] == (
+        "the design does not work at nominal: no margins"
+    )

@@ -84,3 +84,19 @@ def test_a_side_that_reached_the_box_edge_does_not_make_an_axis_the_tightest() -
     data = margins(row("r", 0.01, [0.0, 0.9], edge=True), row("b", 0.5, [0.47, 0.9]))
     assert tightest(data)[0]["parameter"] == "b"
     assert "r ≥ 1.0% / 89.0%" in margins_sentence(data)
+
+
+def test_a_design_with_no_margins_is_undecided_or_does_not_work_as_its_verdict_says() -> None:
+    """Issue 39: "does not work" was said of an undecided design."""
+    from experiments.report_kit.margins_section import margins_sentence, robustness_sentence
+
+    undecided = {**margins(works=False), "verdict": {"decision": "undecided"}}
+    failing = {**margins(works=False), "verdict": {"decision": "fails"}}
+    assert margins_sentence(undecided).startswith(
+        "design 7 is undecided (too few trials to tell whether it works at the target) at "
+        "nominal on the margins' draws"
+    )
+    assert "does not work" not in robustness_sentence(undecided)
+    assert "is undecided" in robustness_sentence(undecided)
+    assert margins_sentence(failing).startswith("design 7 does not work at nominal")
+    assert "none (it does not work on these draws)" in robustness_sentence(failing)

@@ -34,3 +34,13 @@ def test_an_unconfirmed_design_is_not_called_one_to_build() -> None:
 def test_no_design_says_why() -> None:
     box = recommendation_html(None, None, None, "", absent="no design works")
     assert "No design to build yet" in box and "no design works" in box
+
+
+def test_a_missing_mean_exit_time_reads_n_a_not_a_dash_and_a_unit() -> None:
+    """Issue 39: an entry with no mean exit time printed a dangling "– s"."""
+    design = entry(40, 40)
+    design["verdict"]["orientations"]["heavy_trailing"]["mean_exit_time_s"] = None
+    design["verdict"]["orientations"]["heavy_leading"]["mean_exit_time_s"] = 1.234
+    box = recommendation_html("design 5", comparison(design), None, "the best")
+    assert "mean exit time heavy leading 1.23 s, heavy trailing n/a against" in box
+    assert "– s" not in box and "- s" not in box

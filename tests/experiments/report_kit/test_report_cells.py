@@ -26,3 +26,12 @@ def test_an_interval_needs_both_ends():
     assert interval([0.9, None]) == DASH
     assert interval(None) == DASH
     assert interval([1234.5, 5678.9], ".3g") == "[1.23e+03, 5.68e+03]"
+
+
+def test_a_quantity_has_its_unit_or_is_n_a_alone():
+    from experiments.report_kit.cells import UNKNOWN, quantity
+
+    assert quantity(1.25, "s", ".2f") == "1.25 s"
+    assert quantity(3, "s") == "3 s"
+    for value in (None, math.nan, math.inf):
+        assert quantity(value, "s") == UNKNOWN == "n/a"  # never "– s"

@@ -65,8 +65,9 @@ def test_its_stops_are_failing_designs_not_lost_ones(tmp_path: Path):
     passive = summary["passive"]
     assert (passive["works_basis"], passive["works_n"]) == ("every design", 8)
     # 6 judged, 2 proven to fail: the fraction is over all 8
-    assert "2 of 6 designs judged work (25% [7%, 59%] of every design, n = 8)" in summary_table(
-        summary
+    assert (
+        "2 of 6 designs judged work, 0 undecided; 2 of 8 in every design (6 judged, 2 proven to "
+        "fail below) work: 25% [7%, 59%]" in summary_table(summary)
     )
     geometric = next(p for p in summary["pruning"] if p["level"] == "geometric")
     assert (geometric["recall_basis"], geometric["recall_n"]) == ("every design", 2)
