@@ -6,8 +6,9 @@ is never mixed with it), in one of two forms chosen by where stderr goes:
   (writing a report), a line when it starts that gets its time when it ends;
 - anything else (``partfeeder run 2>log``, a batch job's log, a pipe): plain lines, never a
   carriage return: a bar's start, a line each time a tenth of its items is done (or
-  :data:`LogBar.EVERY` items, or :data:`LogBar.INTERVAL_S` seconds, since the last one,
-  whichever comes first), each with done/total, the elapsed time and the estimate, and its
+  :data:`LogBar.EVERY` items, or :data:`LogBar.INTERVAL_S` seconds with work going on, since
+  the last one, whichever comes first), each with done/total, the elapsed time and the
+  estimate, and its
   end with its wall time; a phase's start and end with its wall time (issue 39: piped to a
   file, a sweep said nothing for 18 minutes).
 
@@ -79,7 +80,7 @@ class LogBar:
 
     SHARES = 10  # a line each time another tenth of the items is done
     EVERY = 50  # and at least every 50 items
-    INTERVAL_S = 60.0  # and, on an item done, if a minute has passed since the last line
+    INTERVAL_S = 30.0  # and on an item done or a refresh, if 30 s passed since the last
 
     def __init__(
         self,
@@ -108,8 +109,11 @@ class LogBar:
             self.total, 1
         )
         if share or self.n - self.last_n >= self.EVERY or now - self.last_t >= self.INTERVAL_S:
-            self.last_n, self.last_t = self.n, now
-            self._line(f"{self.desc}: {self.counts()}, {self.times(now)}{self.tail()}")
+            self._progress(now)
+
+    def _progress(self, now: float) -> None:
+        self.last_n, self.last_t = self.n, now
+        self._line(f"{self.desc}: {self.counts()}, {self.times(now)}{self.tail()}")
 
     def counts(self) -> str:
         """``30/64 (47%)``."""
@@ -139,7 +143,11 @@ class LogBar:
         self.desc = desc
 
     def refresh(self) -> None:
-        """Nothing: a log gets a line when work is done, not when a count beside it moves."""
+        """A line only if :data:`INTERVAL_S` has passed since the last one: the counts beside
+        moved (a sweep's evaluations while no design finishes) and the log was quiet."""
+        now = self.clock()
+        if not self.closed and now - self.last_t >= self.INTERVAL_S:
+            self._progress(now)
 
     def close(self) -> None:
         if self.closed:

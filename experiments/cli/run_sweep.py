@@ -7,7 +7,9 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
+from time import monotonic
 from typing import Any, TextIO
 
 from experiments.cli.baseline import add_baseline_argument, baseline_for, check_baseline_form
@@ -49,13 +51,21 @@ class SweepProgress:
     (:func:`experiments.sweep.ladder.run_sweep`'s ``finished``), so the bar's total is the
     config's number of designs from the start and tqdm's time estimate means something;
     the number of evaluations is not known in advance (the ladder is adaptive), so each
-    level's feasible and evaluated counts so far are shown beside it. ``stream`` None draws
-    on stderr when it is a terminal (tests give a ``StringIO``)."""
+    level's feasible and evaluated counts so far are shown beside it. The time left is
+    :class:`experiments.eta.LadderEta`'s, from each level's cost and pass rate measured so
+    far (the designs stopped at the cheap first level finish first: a rate over designs
+    finished read "00:02" with minutes left). ``stream`` None writes on stderr, redrawn on a
+    terminal, as lines elsewhere (:mod:`experiments.progress`; tests give a ``StringIO``);
+    ``clock`` (s) is the estimate's."""
 
-    def __init__(self, quiet: bool, stream: TextIO | None = None):
+    def __init__(
+        self, quiet: bool, stream: TextIO | None = None, clock: Callable[[], float] = monotonic
+    ):
         self.quiet = quiet
         self.stream = stream
+        self.clock = clock
         self.bar: Any = None
+        self.eta: Any = None
         self.levels: list[str] = []
         self.evaluated: list[int] = []
         self.feasible: list[int] = []
@@ -64,9 +74,11 @@ class SweepProgress:
         if self.quiet:
             return
         if event == "start":
+            from experiments.eta import LadderEta
             from experiments.progress import bar
 
             self.levels = list(info["levels"])
+            self.eta = LadderEta(len(self.levels), info.get("waiting", ()))
             done = info["done"]
             self.evaluated = [sum(1 for (_, lv) in done if lv == level) for level in self.levels]
             self.feasible = [
@@ -74,13 +86,20 @@ class SweepProgress:
                 for level in self.levels
             ]
             self.bar = bar(
-                info["designs"], "designs", "design", initial=info["finished"], stream=self.stream
+                info["designs"],
+                "designs",
+                "design",
+                initial=info["finished"],
+                stream=self.stream,
+                estimate=self.eta.eta,
+                clock=self.clock,
             )
             self.bar.set_postfix_str(self.counts(), refresh=False)
             return
         if self.bar is None:
             return
         rung = info["rung"]
+        self.eta.result(rung, info.get("wall_time_s"), not info["finished"])
         self.evaluated[rung] += 1
         if event == "result" and info["status"] == "feasible":
             self.feasible[rung] += 1

@@ -123,13 +123,16 @@ def run_sweep(
     """Run (or resume) the sweep of ``config`` in ``out_dir``; returns the results database.
 
     ``progress(event, info)`` is called in this process: ``("start", {"levels", "done",
-    "designs", "finished"})`` once, then ``("result", {"rung", "level", "status",
-    "finished"})`` per evaluation and ``("quarantine", {"rung", "level", "finished"})`` per
-    job given up. ``designs`` is the number of designs and ``finished`` (at the start) how
-    many of them had stopped climbing before this run; an event's ``finished`` says that its
-    design has stopped climbing now (no rung left, or stopped by :func:`climbs` and not in the
-    holdout, or quarantined), so every design finishes exactly once and ``designs`` is a total known
-    from the start, though the number of evaluations is not (the ladder is adaptive).
+    "designs", "finished", "waiting"})`` once, then ``("result", {"rung", "level", "status",
+    "finished", "wall_time_s"})`` per evaluation and ``("quarantine", {"rung", "level",
+    "finished"})`` per job given up. ``designs`` is the number of designs and ``finished`` (at
+    the start) how many of them had stopped climbing before this run; an event's ``finished``
+    says that its design has stopped climbing now (no rung left, or stopped by :func:`climbs`
+    and not in the holdout, or quarantined), so every design finishes exactly once and
+    ``designs`` is a total known from the start, though the number of evaluations is not (the
+    ladder is adaptive). ``waiting`` is the rung of each unfinished design's next job and
+    ``wall_time_s`` the evaluation's time in its worker: what the time estimate is made of
+    (:class:`experiments.eta.LadderEta`).
     ``evaluate`` runs in the workers (a function of a module they can import; tests replace
     it to make workers crash). A sweep with nothing left to run starts no worker. A config
     with a device family draws its designs from the family's box
@@ -162,6 +165,7 @@ def run_sweep(
                     "done": done,
                     "designs": len(designs),
                     "finished": len(designs) - len(jobs),
+                    "waiting": [int(job["rung"]) for job in jobs],
                 },
             )
         if jobs:
@@ -201,6 +205,7 @@ def _climb(
                     "level": job["level"],
                     "status": result["status"],
                     "finished": not following,
+                    "wall_time_s": result.get("wall_time_s"),
                 },
             )
         return following

@@ -66,16 +66,31 @@ def test_in_a_log_a_bar_is_lines_one_per_tenth_of_its_items_with_done_total_and_
     assert lines[-1] == "partfeeder: designs: 20/20 (100%) done in 01:00"
 
 
-def test_in_a_log_a_long_bar_writes_at_least_every_fifty_items_and_every_minute() -> None:
+def test_in_a_log_a_long_bar_writes_at_least_every_fifty_items_and_every_interval() -> None:
     out, clock = io.StringIO(), Clock()
     b = bar(1000, "cases", "case", stream=out, clock=clock)
     for _ in range(120):
         b.update()  # a tenth is 100 items: lines at 50 (every 50) and 100 (the tenth)
     clock.now += LogBar.INTERVAL_S
-    b.update()  # a minute since the last line: one more
+    b.update()  # the interval since the last line: one more
     b.update()
     counted = [line.split()[2] for line in out.getvalue().splitlines()[1:]]
     assert counted == ["50/1000", "100/1000", "121/1000"]
+
+
+def test_in_a_log_work_that_moves_no_item_gets_a_line_per_interval_not_per_refresh() -> None:
+    """A sweep's evaluations below the top refresh the counts beside the bar: a log hears of
+    them once per interval, not once each."""
+    out, clock = io.StringIO(), Clock()
+    b = bar(10, "designs", "design", stream=out, clock=clock)
+    for _ in range(5):
+        clock.now += LogBar.INTERVAL_S / 4
+        b.set_postfix_str(f"evaluated {clock.now:.1f}")
+        b.refresh()
+    lines = out.getvalue().splitlines()
+    assert len(lines) == 2  # the start, and one after the interval
+    assert lines[1].startswith("partfeeder: designs: 0/10 (0%), elapsed 00:30, ETA ?")
+    assert lines[1].endswith(f"evaluated {LogBar.INTERVAL_S:.1f}")
 
 
 def test_a_log_bar_closed_early_says_where_it_stopped_with_the_callers_counts() -> None:

@@ -84,3 +84,37 @@ def test_quiet_draws_nothing(tmp_path):
     run_sweep(tiny_config(), tmp_path, progress=bars, evaluate=climb_some)
     bars.close()
     assert stream.getvalue() == ""
+
+
+class StepClock:
+    """A clock (s) the test moves."""
+
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_the_time_left_counts_each_levels_cost_not_the_designs_finished_first():
+    """Issue 39: 10 designs, 1 s each at the first level, 5 of them stopped there; a rate over
+    designs finished says 10 s are left when the 5 others' next levels are still to come.
+    The line says it is a lower bound ('>=') until the level above has reported, then the
+    expected work: 4 designs left at 5 s each (the worker times of the events)."""
+    stream, clock = io.StringIO(), StepClock()
+    bars = SweepProgress(quiet=False, stream=stream, clock=clock)
+    bars("start", {"levels": list(LEVELS[:2]), "done": {}, "designs": 10, "finished": 0,
+                   "waiting": [0] * 10})  # fmt: skip
+    for design in range(10):
+        clock.now += 1.0
+        result = {"rung": 0, "level": "geometric", "status": "feasible", "wall_time_s": 1.0}
+        bars("result", {**result, "finished": design % 2 == 1})
+    clock.now += 5.0
+    bars("result", {"rung": 1, "level": "kinematic", "status": "feasible",
+                    "wall_time_s": 5.0, "finished": True})  # fmt: skip
+    bars.close()
+    lines = stream.getvalue().splitlines()
+    at_five = next(line for line in lines if " 5/10 " in line)
+    assert "ETA >= 00:05" in at_five  # 5 waiting at kinematic, taken at geometric's 1 s
+    at_six = next(line for line in lines if " 6/10 " in line)
+    assert "elapsed 00:15, ETA 00:20" in at_six  # 4 x 5 s at 15 s of work in 15 s
