@@ -6,7 +6,9 @@ how they agree (:mod:`experiments.bench.agreement`); or, with ``--trial``, the c
 verdict trial and its parts (:mod:`experiments.bench.trial_cost`); or, with ``--verdict``, the
 cost of deciding designs by the full verdict alone and by the screen then the verdict
 (:mod:`experiments.bench.verdict_cost`); or, with ``--part``, a step's cost for the cup (three
-pieces) against the peg (:mod:`experiments.bench.part_cost`)."""
+pieces) against the peg (:mod:`experiments.bench.part_cost`). ``--quick`` makes every mode
+small (the suite's sections, ``--level``, ``--agreement``, and the N of ``--trial``,
+``--verdict``, ``--part`` unless given) and writes no files unless ``--out`` is given."""
 
 from __future__ import annotations
 
@@ -20,14 +22,32 @@ from experiments.cli.usage import UsageError, check_count, check_out_dir, check_
 
 SECTIONS = ("analytic", "speed", "feeder", "ladder")  # experiments.bench.suite.SECTIONS
 DETAIL_LEVELS = ("geometric", "kinematic")
+DEFAULT_OUT = "bench-out"  # the suite's and --agreement's files, unless --quick
+
+
+class DefaultN:
+    """The value of ``--trial`` / ``--verdict`` / ``--part`` given without N: the mode's
+    default, full or quick (a class, not a string: argparse would convert a string const)."""
+
+
+# N of --trial, --verdict, --part: full, and with --quick (a smoke test of seconds)
+COUNTS = {"trial": (200, 20), "verdict": (200, 10), "part": (50, 5)}
 
 
 def add_arguments(bench: argparse.ArgumentParser) -> None:
     bench.add_argument(
-        "--out", default="bench-out", help="directory for bench.json, perf-*.png, summary.md"
+        "--out",
+        default=None,
+        help=f"directory for bench.json, perf-*.png, summary.md (default {DEFAULT_OUT}; with "
+        "--quick none: the results are printed, no file is written unless --out is given)",
     )
     bench.add_argument(
-        "--quick", action="store_true", help="smoke test: every section small (under a minute)"
+        "--quick",
+        action="store_true",
+        help="smoke test: every section small (under a minute), and with --trial, --verdict, "
+        "--part their quick N ("
+        + ", ".join(f"{k} {q}" for k, (_, q) in COUNTS.items())
+        + ") unless N is given",
     )
     bench.add_argument(
         "--sections",
@@ -50,7 +70,7 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         "--trial",
         type=int,
         nargs="?",
-        const=200,
+        const=DefaultN,
         default=None,
         metavar="N",
         help="instead: median ms of a verdict trial of table3 over N trials (default 200) and "
@@ -60,7 +80,7 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         "--verdict",
         type=int,
         nargs="?",
-        const=200,
+        const=DefaultN,
         default=None,
         metavar="N",
         help="instead: the worker time of deciding the first N Halton designs (default 200) by "
@@ -71,7 +91,7 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         "--part",
         type=int,
         nargs="?",
-        const=50,
+        const=DefaultN,
         default=None,
         metavar="N",
         help="instead: median us per dynamic step of the cup (three pieces) through the "
@@ -132,35 +152,53 @@ def _detail(args: argparse.Namespace, repeats: int) -> int:
     return 0
 
 
+def _count(args: argparse.Namespace, option: str) -> int:
+    """The N of ``--trial`` / ``--verdict`` / ``--part``: as given, else the mode's default
+    (:data:`COUNTS`: the full one, or the quick one with ``--quick``), checked."""
+    value = getattr(args, option)
+    if value is DefaultN:
+        value = COUNTS[option][1 if args.quick else 0]
+    check_count(value, f"--{option}", 100_000)
+    return int(value)
+
+
+def _out(args: argparse.Namespace) -> Path | None:
+    """Where the files go: ``--out``, else bench-out, or nowhere with ``--quick`` (a smoke
+    test leaves no directory behind unless asked: issue 39)."""
+    if args.out is not None:
+        return Path(args.out)
+    return None if args.quick else Path(DEFAULT_OUT)
+
+
 def _part(args: argparse.Namespace) -> int:
     """``--part N``: a step's cost for a part of several pieces against the peg (issue 24)."""
-    check_count(args.part, "--part", 100_000)
+    count = _count(args, "part")
     check_seed(args.seed)
     from experiments.bench.part_cost import format_part_cost, part_cost
 
-    results = part_cost(args.part, args.seed)
+    results = part_cost(count, args.seed)
     print(json.dumps(results, indent=2) if args.json else format_part_cost(results))
     return 0
 
 
 def _trial(args: argparse.Namespace) -> int:
     """``--trial N``: the cost of one verdict trial and its parts (issue 21)."""
-    check_count(args.trial, "--trial", 100_000)
+    count = _count(args, "trial")
     check_seed(args.seed)
     from experiments.bench.trial_cost import format_trial_cost, trial_cost
 
-    results = trial_cost("table3", args.trial, args.seed)
+    results = trial_cost("table3", count, args.seed)
     print(json.dumps(results, indent=2) if args.json else format_trial_cost(results))
     return 0
 
 
 def _verdict(args: argparse.Namespace) -> int:
     """``--verdict N``: the full verdict alone against the screened one (issue 21)."""
-    check_count(args.verdict, "--verdict", 100_000)
+    count = _count(args, "verdict")
     check_count(args.halton_seed, "--halton-seed", 2**31 - 1, low=0)
     from experiments.bench.verdict_cost import format_verdict_cost, verdict_cost
 
-    results = verdict_cost(args.verdict, args.halton_seed)
+    results = verdict_cost(count, args.halton_seed)
     print(json.dumps(results, indent=2) if args.json else format_verdict_cost(results))
     return 0
 
@@ -189,7 +227,9 @@ def _agreement(args: argparse.Namespace) -> int:
         )
     if not 1 <= args.workers <= 64:
         raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
-    check_out_dir(Path(args.out))
+    out = _out(args)
+    if out is not None:
+        check_out_dir(out)
     from experiments.bench.peers import mujoco_engine, pymunk_engine
 
     for module in (mujoco_engine, pymunk_engine):
@@ -199,7 +239,7 @@ def _agreement(args: argparse.Namespace) -> int:
                 "out with --engines"
             )
     from experiments.bench.agreement.designs import default_designs, named_design
-    from experiments.bench.agreement.report import markdown, write_outputs
+    from experiments.bench.agreement.report import markdown, write_outputs, written_data
     from experiments.bench.agreement.suite import AgreementSettings, agreement_data
     from feeders.feeder import DegenerateDesign, build_feeder
 
@@ -221,13 +261,22 @@ def _agreement(args: argparse.Namespace) -> int:
         args.workers,
         progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
     )
-    paths = write_outputs(data, Path(args.out))
+    written = written_data(data)
+    paths = write_outputs(data, out) if out is not None else []
     if args.json:
-        print(json.dumps(json.loads(paths[0].read_text())["tables"], indent=1))
+        print(json.dumps(written["tables"], indent=1))
     else:
-        print(markdown(json.loads(paths[0].read_text())))
-        print(f"wrote {', '.join(str(p) for p in paths)}")
+        print(markdown(written))
+        _wrote(paths)
     return 0
+
+
+def _wrote(paths: list[Path]) -> None:
+    """Which files were written, or that none was (``--quick`` without ``--out``)."""
+    if paths:
+        print(f"wrote {', '.join(str(p) for p in paths)}")
+    else:
+        print("bench: no files written (--quick without --out)", file=sys.stderr)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -254,12 +303,14 @@ def run(args: argparse.Namespace) -> int:
         settings = SuiteSettings(args.quick, repeats, args.seed, tuple(sections_of(args.sections)))
     except ValueError as exc:
         raise UsageError(f"--sections: {exc}") from None
-    check_out_dir(Path(args.out))
+    out = _out(args)
+    if out is not None:
+        check_out_dir(out)
     data = run_suite(settings, progress=lambda s: print(f"bench: {s} ...", file=sys.stderr))
-    paths = write_outputs(data, Path(args.out))
+    paths = write_outputs(data, out) if out is not None else []
     if args.json:
         print(json.dumps(data, indent=1))
     else:
         print("\n".join(goal_lines(data)))
-        print(f"wrote {', '.join(str(p) for p in paths)}")
+        _wrote(paths)
     return 0

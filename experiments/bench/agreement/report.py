@@ -177,10 +177,16 @@ def _clean(value):
     return value
 
 
+def written_data(data: dict) -> dict:
+    """``data`` as agreement.json holds it (a NaN or an infinity as null), for printing it
+    when no file is written."""
+    return _clean(data)
+
+
 def write_outputs(data: dict, out: Path, picture: bool = True) -> list[Path]:
     """agreement.json, agreement.md and (``picture``) agreement.png in ``out``."""
     out.mkdir(parents=True, exist_ok=True)
-    data = _clean(data)
+    data = written_data(data)
     paths = [out / "agreement.json", out / "agreement.md"]
     paths[0].write_text(json.dumps(data, indent=1))
     paths[1].write_text(markdown(data))
