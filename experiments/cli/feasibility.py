@@ -162,8 +162,7 @@ def run(args: argparse.Namespace) -> int:
     out = out_dir(args.out)
     time_limit = _time_limit(args)
     compile_once(levels)
-    from tqdm import tqdm
-
+    from experiments.progress import bar as progress_bar
     from experiments.verdicts.feasibility import (
         agreement,
         compare_levels,
@@ -186,7 +185,7 @@ def run(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     total = args.designs * len(levels)
     try:
-        with tqdm(total=total, desc="feasibility", unit="job", file=sys.stderr) as bar:
+        with progress_bar(total, "feasibility", "job") as bar:  # lines in a log
 
             def progress(row: dict) -> None:
                 if stream is not None:

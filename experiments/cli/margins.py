@@ -77,12 +77,22 @@ def run(args: argparse.Namespace) -> int:
     out = out_dir(args.out)
     subject = _subject(args)
     compile_once(["dynamic"])
+    from experiments.cli.report import MarginsProgress
     from experiments.margins.measure import MarginSettings
-    from experiments.margins.run import margins_of
+    from experiments.margins.run import axes_of, margins_of
 
     settings = MarginSettings(drops=args.drops, target=args.target, seed=args.seed)
     t0 = time.perf_counter()
-    report = margins_of(subject, settings, workers)
+    bars = MarginsProgress(quiet=args.json)  # a bar on a terminal, lines in a log
+    bars("margins", {"design": subject.name, "axes": len(axes_of(subject))})
+    try:
+        report = margins_of(
+            subject, settings, workers, on_axis=lambda m: bars("axis", {"parameter": m.axis.name})
+        )
+        if not report.margins and bars.bar is not None:
+            bars.bar.set_postfix_str("no axis measured: see the verdict at nominal", refresh=False)
+    finally:
+        bars.close()
     data = report.to_dict()
     files: list[str] = []
     if out is not None:
