@@ -94,19 +94,20 @@ class LadderEta:
         if all(c is None for c in known):
             return None
         costs: list[float] = []
-        guessed = [False] * len(known)
-        for r, c in enumerate(known):
-            below = max(costs, default=0.0)
-            costs.append(c if c is not None else below)
-            guessed[r] = c is None
+        for c in known:
+            costs.append(c if c is not None else max(costs, default=0.0))
         expected = [0.0] * (len(costs) + 1)  # E_r, with E past the top = 0
         for r in reversed(range(len(costs))):
-            on = self.went_on[r] / self.jobs[r] if self.jobs[r] and not guessed[r] else 0.0
+            on = self.went_on[r] / self.jobs[r] if self.jobs[r] and known[r] is not None else 0.0
             expected[r] = costs[r] + on * expected[r + 1]
         left = sum(n * e for n, e in zip(self.waiting, expected, strict=False))
-        lowest = next((r for r, n in enumerate(self.waiting) if n > 0), None)
-        at_least = lowest is not None and any(guessed[lowest:])
-        return left, at_least
+        return left, bool(self.untimed())
+
+    def untimed(self) -> list[int]:
+        """The stages with no measured cost yet at or above the lowest one an item waits at:
+        those whose cost the estimate guesses (it is a lower bound while there are any)."""
+        lowest = next((r for r, n in enumerate(self.waiting) if n > 0), len(self.waiting))
+        return [r for r in range(lowest, len(self.waiting)) if not self.costed[r]]
 
     def eta(self, elapsed: float) -> Eta | None:
         """Wall time left after ``elapsed`` seconds of this run: the work left at the rate of

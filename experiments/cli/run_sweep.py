@@ -110,9 +110,12 @@ class SweepProgress:
             self.bar.refresh()
 
     def counts(self) -> str:
-        """Each level's feasible / evaluated designs so far."""
+        """Each level's feasible / evaluated designs so far, and the levels the time estimate
+        has no cost of yet (while there are any it is a lower bound, shown as ``>=``)."""
         per_level = zip(self.levels, self.feasible, self.evaluated, strict=True)
-        return "feasible/evaluated " + ", ".join(f"{lv} {k}/{n}" for lv, k, n in per_level)
+        text = "feasible/evaluated " + ", ".join(f"{lv} {k}/{n}" for lv, k, n in per_level)
+        untimed = [] if self.eta is None else [self.levels[r] for r in self.eta.untimed()]
+        return text + (f"; not yet timed: {', '.join(untimed)}" if untimed else "")
 
     def close(self) -> None:
         if self.bar is not None:

@@ -109,7 +109,9 @@ def test_workers_in_parallel_spend_the_work_left_at_the_rate_measured():
 
 def test_nothing_is_estimated_before_a_cost_is_measured():
     eta = LadderEta(3, [0, 1, 2])  # a resumed sweep: designs waiting at different rungs
-    assert eta.eta(5.0) is None
+    assert eta.eta(5.0) is None and eta.untimed() == [0, 1, 2]
+    eta.result(0, 1.0, goes_on=True)
+    assert eta.untimed() == [1, 2] and eta.eta(1.0) == Eta(3.0, at_least=True)  # 1 s each
     eta = LadderEta(3, [2])
     eta.result(2, None, goes_on=False)  # a job given up: no cost
     assert eta.eta(5.0) == Eta(0.0)  # nothing waits any more

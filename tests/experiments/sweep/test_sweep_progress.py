@@ -116,5 +116,7 @@ def test_the_time_left_counts_each_levels_cost_not_the_designs_finished_first():
     lines = stream.getvalue().splitlines()
     at_five = next(line for line in lines if " 5/10 " in line)
     assert "ETA >= 00:05" in at_five  # 5 waiting at kinematic, taken at geometric's 1 s
+    assert at_five.endswith("; not yet timed: kinematic")
     at_six = next(line for line in lines if " 6/10 " in line)
     assert "elapsed 00:15, ETA 00:20" in at_six  # 4 x 5 s at 15 s of work in 15 s
+    assert "not yet timed" not in at_six
