@@ -117,7 +117,13 @@ def _start(command: list[str], when: str, database: Path | None = None) -> subpr
     raise AssertionError("its workers did not start working within 300 s")
 
 
-@pytest.mark.parametrize("how", list(SIGNALS), ids=list(SIGNALS))
+def _by_default(*kept: str) -> list:
+    """The signals' names, those not ``kept`` marked slow (CI's longer job runs them): each
+    signal is sent by default in one of the two tests below."""
+    return [how if how in kept else pytest.param(how, marks=pytest.mark.slow) for how in SIGNALS]
+
+
+@pytest.mark.parametrize("how", _by_default("SIGTERM-to-main"), ids=list(SIGNALS))
 @pytest.mark.parametrize(
     "job", [pytest.param("optimize", marks=pytest.mark.slow), "stress"]
 )  # optimize: its workers take long to start; CI's longer job (issue 22)
@@ -127,7 +133,9 @@ def test_a_signal_stops_the_command_cleanly_and_leaves_no_process(
     _signal_and_check(job, how, "working", tmp_path)
 
 
-@pytest.mark.parametrize("how", list(SIGNALS), ids=list(SIGNALS))
+@pytest.mark.parametrize(
+    "how", _by_default("SIGINT-to-group", "SIGKILL-to-main"), ids=list(SIGNALS)
+)
 def test_a_signal_while_the_workers_start_stops_the_command_cleanly(
     how: str, tmp_path: Path
 ) -> None:

@@ -160,6 +160,7 @@ def test_halton_designs_build_or_are_degenerate_with_named_parameters(halton_out
     assert built >= len(halton_outcomes) // 2, summary
 
 
+@pytest.mark.slow  # ~9 s
 def test_every_built_halton_design_has_sound_geometry(halton_outcomes):
     """Reference: shapely checks of _geometry_problems on every design that builds."""
     failures = [

@@ -148,7 +148,9 @@ def _push_out(part, piece, nx: float, ny: float) -> float:
     return high
 
 
-@pytest.mark.parametrize("name", ["table3", "free-form"])
+@pytest.mark.parametrize(
+    "name", [pytest.param("table3", marks=pytest.mark.slow), "free-form"]
+)  # table3: ~25 s, CI's longer job
 def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(name: str) -> None:
     """Each contact is explained by one kind with shapely's signed distance equal to its gap;
     for a part corner outside a polygon, stepping 1e-6 along the normal raises the distance by

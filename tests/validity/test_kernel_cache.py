@@ -129,6 +129,7 @@ def test_a_cold_cache_is_compiled_once_then_only_loaded(cold_cache):
     assert again["loaded"] > 0
 
 
+@pytest.mark.slow  # a cold compile: ~40 s
 def test_planning_workers_load_what_the_parent_compiled(cold_cache):
     """What ``partfeeder plan`` and a sweep's planning workers run (OMPL calling the level's
     checker and propagator) compiles nothing after the parent's warm-up."""

@@ -235,6 +235,7 @@ def test_the_tunnelling_check_has_teeth() -> None:
     assert out[1] < -0.4
 
 
+@pytest.mark.slow  # ~6 s
 def test_no_overlap_after_any_step_in_real_feeders_at_top_speed() -> None:
     """From valid states of table3 and 40 Halton designs, random controls at the corners of a
     fast U (one step moves up to 0.3 + R * 0.3): every state after every step is free of

@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import math
 
+import pytest
 from cli_process import run_cli
 
 from experiments.bench.peers import mujoco_engine
@@ -26,6 +27,7 @@ def _numbers(value):
         yield value
 
 
+@pytest.mark.slow  # ~30 s
 def test_quick_bench_writes_everything_and_errors_converge(tmp_path):
     done = run_cli("bench", "--quick", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr

@@ -344,6 +344,7 @@ def test_fresh_processes_answer_bad_input_in_one_line(tmp_path: Path) -> None:
         assert len(proc.stderr.strip().splitlines()) == 1 and "Traceback" not in proc.stderr
 
 
+@pytest.mark.slow  # ~30 s
 def test_a_sample_of_the_corpus_is_refused_cleanly_and_the_controls_run(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -119,6 +119,7 @@ def test_draw_writes_a_picture(tmp_path, capsys):
     assert target.read_bytes()[:8] == PNG_MAGIC
 
 
+@pytest.mark.slow  # ~20 s
 def test_simulate_reports_both_drops_and_writes_strip_animation_and_json(tmp_path):
     """``partfeeder simulate``: a row per entry orientation (goal, why it ended, T, overlap,
     energy rise, LCP failures) and Eq. 10's objective; the strip (PNG), the animation (GIF)

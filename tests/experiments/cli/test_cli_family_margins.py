@@ -15,6 +15,7 @@ NAMES = [
 ]  # fmt: skip
 
 
+@pytest.mark.slow  # ~20 s
 def test_a_familys_margins_as_json_over_its_parameters_and_mu(tmp_path):
     done = run_cli(
         "margins", "--family", "fig1-cup", "--values", OPTIMUM, "--drops", "2",

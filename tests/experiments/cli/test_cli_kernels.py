@@ -28,6 +28,7 @@ def _plan_json(cache) -> subprocess.CompletedProcess:
     )
 
 
+@pytest.mark.slow  # a cold compile: ~80 s
 def test_a_cold_cache_is_announced_once_and_a_warm_one_not_at_all(tmp_path):
     cold = _plan_json(tmp_path)
     assert cold.returncode == 0, cold.stderr

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 import yaml
 from cli_process import noise, run_cli
 from sweep_fixtures import TINY
@@ -22,6 +23,7 @@ def _config(tmp_path: Path, **changes) -> Path:
     return path
 
 
+@pytest.mark.slow  # ~55 s
 def test_run_prints_json_and_writes_report_results_and_ompl_database(tmp_path: Path) -> None:
     out = tmp_path / "sweep"
     proc = _cli("run", str(_config(tmp_path)), "--out", str(out), "--json")
@@ -51,6 +53,7 @@ def test_a_bad_config_is_one_line_naming_the_field_and_the_allowed_values(tmp_pa
     assert proc.returncode == 2 and "designs.count = 0" in proc.stderr and "[1, " in proc.stderr
 
 
+@pytest.mark.slow  # ~20 s
 def test_a_directory_of_another_config_is_refused_and_kept(tmp_path: Path) -> None:
     out = tmp_path / "sweep"
     first = _config(tmp_path, designs={"count": 1, "seed": 1})

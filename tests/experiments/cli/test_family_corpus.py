@@ -291,6 +291,7 @@ def _run_case(argv: list[str], capsys: pytest.CaptureFixture) -> tuple[int | str
     return code, err, took
 
 
+@pytest.mark.slow  # ~15 s
 def test_the_malformed_family_corpus_is_refused_in_one_line_each(
     tmp_path: Path, capsys: pytest.CaptureFixture
 ) -> None:

@@ -149,6 +149,7 @@ def test_run_configs(capsys, mutation: tuple[Any, bool]) -> None:
 
 @SETTINGS
 @given(mutation=_mutations(BASE_SCENE, SCENE_FLOAT, ["bounds", "starts", "goal", "goal.yaw"]))
+@pytest.mark.slow  # ~8 s; the run configs' stays
 def test_scenes(capsys, mutation: tuple[Any, bool]) -> None:
     doc, valid = mutation
     with tempfile.TemporaryDirectory() as tmp, pytest.MonkeyPatch.context() as patch:

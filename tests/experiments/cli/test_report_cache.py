@@ -183,6 +183,7 @@ def test_the_key_follows_the_rows_not_the_files_bytes(tmp_path):
     assert report_cache.report_key(results) not in (key, None)
 
 
+@pytest.mark.slow  # ~15 s
 def test_report_twice_on_the_command_line_draws_once_and_prints_json(tmp_path):
     sweep = finished_sweep(tmp_path / "sweep")
     first = run_cli("report", str(sweep), "--json")

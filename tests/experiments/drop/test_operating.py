@@ -90,6 +90,7 @@ def test_the_sprts_error_rates_hold_for_a_design_at_both_hypotheses():
 
 
 @pytest.mark.parametrize("settings", [VerdictSettings(), SPRT_SETTINGS], ids=["wilson", "sprt"])
+@pytest.mark.slow  # ~40 s each; the exact characteristic's test stays
 def test_the_design_characteristic_matches_the_verdicts_own_loop_on_coin_flips(
     settings, monkeypatch
 ):

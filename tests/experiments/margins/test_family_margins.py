@@ -131,7 +131,7 @@ def test_a_value_whose_device_cannot_be_built_fails_its_trials(cup):
     assert not e.inside(settings.target)
 
 
-@pytest.mark.parametrize("name", ["pin_r", "mu"])
+@pytest.mark.parametrize("name", [pytest.param("pin_r", marks=pytest.mark.slow), "mu"])  # ~11 s
 def test_a_tiny_run_brackets_each_side_within_the_box(cup, name):
     axis = next(a for a in axes_of(cup) if a.name == name)
     settings = MarginSettings(drops=4, seed=0)

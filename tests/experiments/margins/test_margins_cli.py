@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from cli_process import noise, run_cli
 
 from experiments.margins.axes import AXIS_NAMES
@@ -20,6 +21,7 @@ SIDE_KEYS = {
 }  # fmt: skip
 
 
+@pytest.mark.slow  # ~25 s
 def test_margins_json_schema_and_files(tmp_path):
     done = run_cli(
         "margins", "--design", "table3", "--drops", "1", "--workers", "1", "--json",

@@ -232,6 +232,7 @@ def test_a_stopped_centring_resumes_from_the_store_without_measuring_again(tmp_p
         db.close()
 
 
+@pytest.mark.slow  # ~10 s
 def test_the_robust_goal_runs_end_to_end_and_a_run_again_measures_nothing(tmp_path: Path):
     table3 = preset("table3").to_vector()
     # table3 0.01 of each box below its upper limit and 0.03 above its lower one where the

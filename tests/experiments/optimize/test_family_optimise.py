@@ -100,6 +100,7 @@ def test_a_start_is_evaluated_by_the_familys_verdict_trials(cup_run) -> None:
     assert stored == expected
 
 
+@pytest.mark.slow  # ~8 s
 def test_the_report_builds_with_both_designs_strips_and_says_what_is_left_out(cup_run) -> None:
     out, config, results = cup_run
     page = write_report(out, config, results)

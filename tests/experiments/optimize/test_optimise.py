@@ -93,6 +93,7 @@ def test_a_second_stage_starts_from_the_best_design_of_the_first(small_run):
         db.close()
 
 
+@pytest.mark.slow  # ~12 s
 def test_a_smaller_budget_in_the_same_directory_sees_only_its_own_calls(small_run, tmp_path):
     out, first = small_run
     smaller = {**SMALL, "methods": [{**SMALL["methods"][0], "budget": 3}]}

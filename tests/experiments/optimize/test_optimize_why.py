@@ -107,6 +107,7 @@ class Counted:
         monkeypatch.setattr(Evaluator, "run_trials", run_trials)
 
 
+@pytest.mark.slow  # ~8 s
 def test_another_baseline_costs_its_own_verdict_once_and_table3_comes_back_for_free(
     tiny, tmp_path, monkeypatch
 ):
@@ -258,6 +259,7 @@ def test_the_report_opens_with_what_to_build_then_why_and_the_margins(tiny, tmp_
     assert "Table 2 range" not in text  # the kit's differences table replaces Table 3's layout
 
 
+@pytest.mark.slow  # ~10 s
 def test_the_report_is_kept_when_nothing_changed_and_drawn_again_when_something_did(tiny, tmp_path):
     config = config_from_dict(TINY)
     results = tiny[1]

@@ -210,7 +210,7 @@ def test_a_case_file_with_a_bad_composite_part_is_refused_naming_the_field():
         Case.from_dict(data)
 
 
-@pytest.mark.parametrize("seed", [0, 3])
+@pytest.mark.parametrize("seed", [0, pytest.param(3, marks=pytest.mark.slow)])  # ~12 s each
 def test_composite_run_keeps_every_hard_bound(seed):
     """81 composite cases (every kind x family x level) at their drawn steps: no exception,
     NaN, penetration, energy gain or wall crossing beyond the bounds; the summary counts them

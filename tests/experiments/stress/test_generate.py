@@ -30,6 +30,7 @@ def test_a_bad_case_field_is_named():
         Case.from_dict({**data, "level": "quantum"})
 
 
+@pytest.mark.slow  # ~20 s
 def test_generation_covers_every_family_and_placement():
     """Families are dealt in turn with the levels; placements are drawn: 540 cases hold every
     family at every level and every kind of placement (the issue's post drop included)."""

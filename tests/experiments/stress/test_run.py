@@ -59,6 +59,7 @@ def test_ci_sized_run_keeps_every_hard_bound(seed: int):
     assert data["hard_failures"] == 0, table(data)
 
 
+@pytest.mark.slow  # ~11 s
 def test_replay_reproduces_a_failing_case_record(tmp_path):
     """The first case of seed 0 that breaks a hard bound (any case if none does) is written,
     read back and run again: the same record, bit for bit; the command replays it."""

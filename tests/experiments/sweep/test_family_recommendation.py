@@ -138,6 +138,7 @@ def test_the_margins_vary_the_familys_parameters_and_mu(reported) -> None:
     assert [(a.low, a.high) for a in axes[:-1]] == list(zip(low, high, strict=True))
 
 
+@pytest.mark.slow  # ~6 s
 def test_another_baseline_given_as_the_familys_values(reported) -> None:
     db, summary, _ = reported
     text = "0.5,1.2,1.2,-0.6,1.6,0.2"

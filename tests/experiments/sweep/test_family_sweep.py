@@ -191,6 +191,7 @@ def test_the_screen_and_the_verdict_are_the_familys_with_the_sweeps_seeds(swept:
     assert built >= 3 and refused >= 1  # both kinds of design are exercised
 
 
+@pytest.mark.slow  # ~6 s
 def test_the_summary_and_the_report_use_the_familys_parameters(swept: Path) -> None:
     summary = summarise(swept / "results.sqlite")
     assert summary["parameters"] == list(load_family(FIG1).vector_names)

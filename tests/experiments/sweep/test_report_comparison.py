@@ -62,6 +62,7 @@ def test_a_sweep_where_nothing_works_says_why_there_is_no_comparison(
     assert not list((page.parent / "figures").glob("overlay_*.png"))
 
 
+@pytest.mark.slow  # ~8 s
 def test_the_comparison_is_with_the_baseline_given(tmp_path: Path) -> None:
     baseline = ("fig7a", [float(v) for v in PRESETS["fig7a"].to_vector()])
     _, text = passive_sweep(tmp_path, target=0.0, baseline=baseline)

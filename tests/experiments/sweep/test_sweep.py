@@ -198,6 +198,7 @@ def test_a_second_start_runs_nothing_and_duplicates_nothing(
     assert pending_jobs(config, designs, holdout, done) == []
 
 
+@pytest.mark.slow  # ~16 s
 def test_a_sweep_killed_with_sigkill_resumes_to_the_rows_of_an_uninterrupted_run(
     reference: Path, tmp_path: Path
 ) -> None:
@@ -286,14 +287,8 @@ def _start_sweep(tmp_path: Path) -> tuple[list[str], subprocess.Popen, Path, int
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
-@pytest.mark.parametrize(
-    "sig",
-    [
-        signal.SIGTERM,
-        pytest.param(signal.SIGINT, marks=pytest.mark.slow),
-    ],  # SIGINT: CI's longer job
-    ids=["SIGTERM", "SIGINT"],
-)
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+@pytest.mark.slow  # ~30 s each: CI's longer job; test_command_signals.py's stay by default
 def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resumes(
     reference: Path, tmp_path: Path, sig: signal.Signals
 ) -> None:
@@ -324,6 +319,7 @@ def test_a_sweep_stopped_by_a_signal_stores_its_work_leaves_no_process_and_resum
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads the process table")
+@pytest.mark.slow  # ~12 s; test_worker.py's
 def test_the_workers_of_a_sweep_whose_main_process_is_killed_with_sigkill_end(
     tmp_path: Path,
 ) -> None:

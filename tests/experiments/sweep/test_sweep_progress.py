@@ -10,6 +10,7 @@ import io
 from pathlib import Path
 from typing import Any
 
+import pytest
 from sweep_fixtures import fake_result, tiny_config
 
 from experiments.cli.run_sweep import SweepProgress
@@ -69,6 +70,7 @@ def test_the_bars_total_is_the_designs_from_the_start_and_is_reached_at_the_end(
         assert level in drawn  # each level's feasible / evaluated counts beside the bar
 
 
+@pytest.mark.slow  # ~10 s
 def test_a_finished_sweep_started_again_starts_complete_and_runs_nothing(tmp_path):
     _sweep(tmp_path)
     again = _sweep(tmp_path)

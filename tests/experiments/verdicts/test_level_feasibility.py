@@ -170,6 +170,7 @@ def test_feasibility_figure_from_hand_made_rows(tmp_path):
 # --- compare_levels --------------------------------------------------------------------------
 
 
+@pytest.mark.slow  # ~7 s
 def test_compare_levels_is_the_same_serial_and_in_worker_processes():
     seen: list[tuple[int, int]] = []
     budget = {"time_limit": CAP_S, "seed": 1, "propagations": PROPAGATIONS}

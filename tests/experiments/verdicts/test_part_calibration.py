@@ -124,6 +124,7 @@ def test_highest_lower_bound_first_then_eligible_neighbours_then_halton():
     assert choose(level, GRID).point.friction == 0.3
 
 
+@pytest.mark.slow  # ~8 s
 def test_quick_command_writes_table_data_and_heatmap(tmp_path, capsys):
     out = tmp_path / "cal"
     assert run(["calibrate", "--part", "--quick", "--workers", "1", "--out", str(out)]) == 0
