@@ -8,9 +8,8 @@ is never mixed with it), in one of two forms chosen by where stderr goes:
   carriage return: a bar's start, a line each time a tenth of its items is done (or
   :data:`LogBar.EVERY` items, or :data:`LogBar.INTERVAL_S` seconds with work going on, since
   the last one, whichever comes first), each with done/total, the elapsed time and the
-  estimate, and its
-  end with its wall time; a phase's start and end with its wall time (issue 39: piped to a
-  file, a sweep said nothing for 18 minutes).
+  estimate, and its end with its wall time; a phase's start and end with its wall time
+  (issue 39: piped to a file, a sweep said nothing for 18 minutes).
 
 The time estimate is tqdm's rule (items left x seconds per item so far) unless the caller
 knows better and hands in ``estimate`` (:mod:`experiments.eta`: the sweep's designs climb
