@@ -177,7 +177,9 @@ def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(nam
         assert kinds.get("disc", 0) > 20
 
 
-@pytest.mark.parametrize("name", ["table3", "free-form"])
+@pytest.mark.parametrize(
+    "name", [pytest.param("table3", marks=pytest.mark.slow), "free-form"]
+)  # table3: ~15 s, CI's longer job
 def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
     """Completeness: a part corner whose shapely signed distance to the polygons is below the
     margin appears as a contact at that corner: with that gap when outside, with a gap <= 0

@@ -100,6 +100,10 @@ def _halton_scenes(count: int = 3) -> list[Scene]:
 
 
 SCENE_NAMES = ["table3", "halton-1", "halton-2", "halton-3", "free-form"]
+# The Halton designs (~4 s each) in CI's longer job; table3 and free-form by default.
+SCENE_CASES = [
+    pytest.param(n, marks=pytest.mark.slow) if n.startswith("halton") else n for n in SCENE_NAMES
+]
 
 
 @functools.cache
@@ -217,17 +221,14 @@ def _assert_distances_agree(check: CrossCheck, label: str) -> None:
 # --------------------------------------------------------------------------- random poses
 
 
-@pytest.mark.parametrize(
-    "name",
-    [pytest.param(n, marks=pytest.mark.slow) if n.startswith("halton") else n for n in SCENE_NAMES],
-)  # the Halton designs: ~5 s each, CI's longer job; table3 and free-form stay
+@pytest.mark.parametrize("name", SCENE_CASES)
 def test_penetration_verdict_matches_shapely(name: str) -> None:
     """clearance < 0 and ``penetrates`` both equal shapely's verdict (intersection area > 0,
     or a disc centre nearer the part than its radius) on 20,000 seeded poses outside the band."""
     _assert_verdicts_agree(_scene_check(name), name)
 
 
-@pytest.mark.parametrize("name", SCENE_NAMES)
+@pytest.mark.parametrize("name", SCENE_CASES)
 def test_distance_matches_shapely_when_apart(name: str) -> None:
     """For separated shapes the kernel's clearance equals shapely.distance (to the polygon
     union, and centre distance minus radius for discs) within 1e-9."""

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import select
 import subprocess
 import sys
 import time
@@ -46,6 +47,15 @@ load = compile_kernels(sys.argv[1].split(","), on_first_compile=paused)
 print(json.dumps({"compiled": load.compiled, "loaded": load.loaded}))
 """
 HANG_GUARD_S = 600.0  # only a failure waits this long (a loaded machine compiles in ~100 s)
+# A process in the compile lock's block until a line on stdin, saying when it is inside.
+HOLD_THE_LOCK = """
+import sys
+from pathlib import Path
+from validity.kernel_cache import one_compile_at_a_time
+with one_compile_at_a_time(Path(sys.argv[1])):
+    print("inside", flush=True)
+    sys.stdin.readline()
+"""
 
 
 def _waits_for_a_lock(pid: int) -> bool:
@@ -78,7 +88,57 @@ def cold_cache(tmp_path, monkeypatch) -> Path:
     return cache
 
 
+def _wait_until_waiting(process: subprocess.Popen) -> None:
+    """Until ``process`` waits for the lock; it failing to wait fails at once: it ended, or
+    it said it is inside (its stdout is readable)."""
+    deadline = time.monotonic() + HANG_GUARD_S
+    while not _waits_for_a_lock(process.pid):
+        assert process.poll() is None, "it ended without waiting"
+        assert not select.select([process.stdout], [], [], 0)[0], "it got in without waiting"
+        assert time.monotonic() < deadline, "it never waited for the lock"
+        time.sleep(0.02)
+
+
 @pytest.mark.skipif(not os.path.exists("/proc/locks"), reason="reads the kernel's lock table")
+def test_the_compile_lock_makes_later_comers_wait_for_the_first_then_lets_them_in_together(
+    tmp_path,
+):
+    """The lock's rule alone, without a compile: while the first process is inside, the
+    others wait (the kernel's lock table lists them as waiters); once it leaves, they are
+    inside at the same time (what they do then is load, which need not wait in turn)."""
+    lock = tmp_path / "cache" / "kernels.lock"
+    command = [sys.executable, "-c", HOLD_THE_LOCK, str(lock)]
+
+    def start() -> subprocess.Popen:
+        return subprocess.Popen(
+            command, cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+        )
+
+    processes = [start()]
+    try:
+        assert processes[0].stdout.readline().strip() == "inside"
+        processes += [start(), start()]
+        for later in processes[1:]:
+            _wait_until_waiting(later)
+        processes[0].stdin.write("\n")
+        processes[0].stdin.flush()
+        assert processes[0].wait(timeout=HANG_GUARD_S) == 0
+        for later in processes[1:]:  # both inside before either is let out
+            assert select.select([later.stdout], [], [], HANG_GUARD_S)[0], "it never got in"
+            assert later.stdout.readline().strip() == "inside"
+        for later in processes[1:]:
+            later.stdin.write("\n")
+            later.stdin.flush()
+            assert later.wait(timeout=HANG_GUARD_S) == 0
+    finally:
+        for process in processes:
+            if process.poll() is None:
+                process.kill()
+                process.wait()
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/locks"), reason="reads the kernel's lock table")
+@pytest.mark.slow  # a cold compile (~20 s of CPU); the lock's rule alone is tested above
 def test_a_process_that_starts_while_another_compiles_waits_and_only_loads(cold_cache):
     """Two processes on one cold cache at once (two test runs, a run and a command): the
     first compiles; the second, started while the first's compile is under way, waits for it

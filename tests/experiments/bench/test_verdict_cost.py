@@ -8,6 +8,8 @@ import math
 import subprocess
 import sys
 
+import pytest
+
 from experiments.bench.verdict_cost import PROCEDURES, format_verdict_cost, verdict_cost
 
 
@@ -28,6 +30,7 @@ def test_every_procedure_is_timed_on_the_same_buildable_designs():
     assert "wilson / screen + sprt" in text and "sprt / screen + sprt" in text
 
 
+@pytest.mark.slow  # ~5 s
 def test_a_disagreement_is_listed_with_both_decisions():
     results = verdict_cost(designs=6, seed=0)
     for row in results["disagreements"]:

@@ -124,7 +124,11 @@ def _bench_in_a_fresh_cache(tmp_path: Path, attempt: int) -> tuple[subprocess.Po
 
 
 @pytest.mark.skipif(not os.path.isdir("/proc"), reason="Linux process groups and /proc")
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize(
+    "sig",
+    [signal.SIGINT, pytest.param(signal.SIGTERM, marks=pytest.mark.slow)],
+    ids=["SIGINT", "SIGTERM"],
+)  # SIGTERM: CI's longer job (test_command_signals.py sends it by default)
 def test_bench_quick_signalled_while_compiling_is_one_line_and_exit_130(
     tmp_path: Path, sig: signal.Signals
 ) -> None:

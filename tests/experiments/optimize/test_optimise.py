@@ -114,6 +114,7 @@ def test_same_seed_same_result_with_one_worker_or_two(small_run, tmp_path):
     assert one["optimum"]["verdict"]["transitions"] == two["optimum"]["verdict"]["transitions"]
 
 
+@pytest.mark.slow  # ~6 s; the family optimiser's stays
 def test_a_second_run_in_the_same_directory_evaluates_nothing_again(small_run):
     out, first = small_run
     again = optimise(config_from_dict(SMALL), out)

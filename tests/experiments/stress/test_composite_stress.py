@@ -127,6 +127,7 @@ def test_a_composite_parts_shapes_for_the_placements():
     assert wedge_angle(CUP, 0.8) is None
 
 
+@pytest.mark.slow  # ~9 s; the run over them stays
 def test_composite_cases_cover_every_kind_family_and_level():
     """81 consecutive composite cases hold every (kind, family, level); each is plain data that
     round-trips, its scene's part a composite part weighing the case's mass."""

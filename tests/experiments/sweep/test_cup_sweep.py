@@ -67,6 +67,7 @@ def test_the_cup_sweep_judges_its_designs_with_the_cups_classes(one_worker: Path
         assert all("open end up" in row for row in verdict["transitions"].values())
 
 
+@pytest.mark.slow  # ~5 s
 def test_the_same_with_two_local_workers(one_worker: Path, tmp_path: Path) -> None:
     two = run_sweep(config_from_dict({**CUP_SWEEP, "workers": 2}), tmp_path)
     assert _rows(two) == _rows(one_worker)

@@ -80,6 +80,7 @@ def test_a_finished_sweep_started_again_starts_complete_and_runs_nothing(tmp_pat
     assert again.ended == (designs, designs)
 
 
+@pytest.mark.slow  # ~6 s
 def test_quiet_draws_nothing(tmp_path):
     stream = io.StringIO()
     bars = SweepProgress(quiet=True, stream=stream)
