@@ -27,10 +27,14 @@ def sigint_disposition(_x: int) -> bool:
     return signal.getsignal(signal.SIGINT) == signal.SIG_IGN
 
 
-def sleep_then_square(x: int) -> int:
-    """A long job (``x`` >= 100 sleeps a minute): what a stop request must not wait for."""
+def sleep_then_square(x: int, finished_in: str | None = None) -> int:
+    """A long job (``x`` >= 100 sleeps a minute, then leaves a file named ``x`` in the folder
+    ``finished_in``): what a stop request must not wait for."""
     import time
+    from pathlib import Path
 
     if x >= 100:
         time.sleep(60)
+        if finished_in is not None:
+            (Path(finished_in) / str(x)).touch()
     return x * x
