@@ -104,6 +104,9 @@ class MarginsProgress:
         elif event == "axis" and self.bar is not None:
             self.bar.set_postfix_str(str(info.get("parameter", "")), refresh=False)
             self.bar.update(1)
+        elif event == "skipped" and self.bar is not None:  # not needed: the total shrinks
+            self.bar.total = max(self.bar.n, self.bar.total - int(info["axes"]))
+            self.bar.set_postfix_str(f"{info['design']}: {info['axes']} axes not needed")
 
     def close(self) -> None:
         if self.bar is not None:

@@ -179,6 +179,7 @@ def margins_of_each(
     on_axis: Callable[[AxisMargin], object] | None = None,
     kinds: Collection[str] | None = None,
     stop: Stop | None = None,
+    on_skip: Callable[[str, int], object] | None = None,
 ) -> dict[str, MarginsReport]:
     """:func:`margins_of` for several designs by label, in one pool that stays warm across
     them, one design after the other in the order given (each one's axes on every worker);
@@ -188,7 +189,10 @@ def margins_of_each(
     ``so_far``: the reports of the designs before it and of this one so far, by label, as
     :meth:`MarginsReport.to_dict`); a reason it returns ends that design: its report holds
     the axes judged before, says why in ``stopped``, and counts in its cost the trials of
-    axes that were already running. Each report's wall time is the whole call's."""
+    axes that were already running. ``on_skip(label, n)`` is called once a design is done
+    with the number of its axes that were not measured (all of a design that does not work,
+    the rest of one stopped), so a progress bar's total stays true. Each report's wall time
+    is the whole call's."""
     t0 = time.perf_counter()
     labels = list(subjects)
     verdicts = {label: design_verdict_of(subjects[label], settings) for label in labels}
@@ -237,6 +241,11 @@ def margins_of_each(
             stopped[label] = stop(label, so_far)
         return stopped[label] is None
 
+    def _skipped(label: str) -> None:
+        unmeasured = len(axes_of(subjects[label], kinds)) - len(done[label])
+        if on_skip is not None and unmeasured > 0:
+            on_skip(label, unmeasured)
+
     pool = None
     if workers > 1:
         from experiments.executors.local import LocalPool
@@ -249,8 +258,10 @@ def margins_of_each(
                 for job in jobs:
                     if not judged(label, measure_axis(job), k == 0):
                         break
+                _skipped(label)
                 continue
             _in_order(pool, jobs, functools.partial(judged, label, first=k == 0))
+            _skipped(label)
     for label in labels:  # the designs' axes in their usual order
         order = {a.name: i for i, a in enumerate(axes_of(subjects[label], kinds))}
         done[label].sort(key=lambda m: order[m.axis.name])

@@ -32,7 +32,8 @@ BUILD, NONE = "build", "none"
 MARGIN_AXES = {"device": ("design", "friction"), "all": None}  # a sweep's ``margins.axes``
 
 # ``progress(event, info)``: ("margins", {"design", "axes"}) when the margins start, then
-# ("axis", {"parameter"}) as each axis is done
+# ("axis", {"parameter"}) as each axis is done and ("skipped", {"design", "axes"}) for the
+# axes of a design not measured (it does not work, or it was outranked)
 Progress = Callable[[str, dict[str, Any]], object]
 
 
@@ -324,6 +325,9 @@ def margins_of_contenders(
         else lambda margin: progress("axis", {"parameter": margin.axis.name}),
         kinds=kinds,
         stop=lambda label, so_far: None if label in protected else outranked(label, so_far),
+        on_skip=None
+        if progress is None
+        else lambda label, n: progress("skipped", {"design": label, "axes": n}),
     )
     return {label: report.to_dict() for label, report in reports.items()}
 

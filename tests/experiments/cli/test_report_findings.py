@@ -45,6 +45,23 @@ def test_the_margins_bar_has_one_step_per_axis_from_the_start() -> None:
     assert "100%" in drawn and drawn.count("100%") == 1  # only once every axis is done
 
 
+@pytest.mark.parametrize("stream", [Terminal, io.StringIO], ids=["terminal", "log"])
+def test_axes_not_needed_shrink_the_margins_bar_so_it_ends_done_not_stopped(stream) -> None:
+    """A design outranked after 2 of its 4 axes, or one that does not work, has axes that are
+    never measured: the bar's total drops by them and it ends at 100 %, not "stopped at"
+    (issue 39: a log read "stopped at 17/39" of a report that finished)."""
+    out = stream()
+    progress = report_cli.MarginsProgress(quiet=False, stream=out)
+    progress("margins", {"design": "table3, design 3", "axes": 8})
+    for name in ("a", "b", "c", "d", "a", "b"):
+        progress("axis", {"parameter": name})
+    progress("skipped", {"design": "design 3", "axes": 2})
+    progress.close()
+    drawn = out.getvalue()
+    assert "6/6" in drawn and "100%" in drawn and "stopped" not in drawn
+    assert "design 3: 2 axes not needed" in drawn
+
+
 def test_a_quiet_report_draws_no_margins_bar() -> None:
     stream = io.StringIO()
     progress = report_cli.MarginsProgress(quiet=True, stream=stream)

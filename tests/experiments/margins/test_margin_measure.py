@@ -20,7 +20,7 @@ from experiments.margins.measure import (
     made_at,
     measure_axis,
 )
-from experiments.margins.run import margins_of
+from experiments.margins.run import margins_of, margins_of_each
 from experiments.margins.search import required
 from feeders.design import PARAMETER_NAMES
 from feeders.scene_spec import design_scene
@@ -120,6 +120,17 @@ def test_a_design_that_does_not_work_gets_no_margins():
     assert report.margins == ()
     data = report.to_dict()
     assert data["works"] is False and data["margins"] == []
+
+
+def test_the_axes_of_a_design_that_does_not_work_are_reported_as_skipped():
+    """``on_skip`` hears of every axis not measured, so a progress bar's total stays true."""
+    subject = Subject.of_scene(design_scene("fig7a"))
+    skipped: list[tuple[str, int]] = []
+    reports = margins_of_each(
+        {"fig7a": subject}, MarginSettings(drops=5), on_skip=lambda *a: skipped.append(a)
+    )
+    assert reports["fig7a"].margins == ()
+    assert skipped == [("fig7a", len(axes()))]
 
 
 def test_an_axis_below_the_target_at_nominal_has_no_interval(table3):
