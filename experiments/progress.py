@@ -61,12 +61,13 @@ def bar(
     )
     if estimate is None:
         return tqdm(**options)
+    rule: Estimate = estimate  # narrowed, for the class below
 
     class EstimatedBar(tqdm):  # tqdm reads its fields from format_dict
         @property
         def format_dict(self) -> dict[str, Any]:
             fields = super().format_dict
-            eta = estimate(fields["elapsed"])
+            eta = rule(fields["elapsed"])
             fields["eta"] = "?" if eta is None else eta.text()
             return fields
 

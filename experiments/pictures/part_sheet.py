@@ -46,12 +46,21 @@ def _part_panel(
         ax.plot(face[:, 0], face[:, 1], color=FACE, lw=3, solid_capstyle="butt", zorder=6)
         outward = down_in_part(pose.yaw)  # resting on the face, gravity points out through it
         label = face.mean(axis=0) + 0.08 * size * outward
-        ax.text(*label, str(k + 1), color=FACE, ha="center", va="center", fontsize=10, zorder=6)
+        ax.text(
+            float(label[0]),
+            float(label[1]),
+            str(k + 1),
+            color=FACE,
+            ha="center",
+            va="center",
+            fontsize=10,
+            zorder=6,
+        )
     ax.plot(*com, "+", color="k", ms=12, mew=1.5, zorder=7)
     shown = [0.0 if abs(v) < 1e-12 * size else v for v in com]  # float noise (1e-17) as 0
     ax.annotate(
         f"centre of mass\n({shown[0]:.4g}, {shown[1]:.4g})",
-        com,
+        (float(com[0]), float(com[1])),
         xytext=(8, 8),
         textcoords="offset points",
         fontsize=7,
@@ -65,12 +74,32 @@ def _part_panel(
             heading = math.degrees(math.atan2(down[1], down[0]))
             tol = math.degrees(cls.tolerance)
             ax.add_patch(
-                Wedge(com, 0.75 * size, heading - tol, heading + tol, fc=colour, alpha=0.08, lw=0)
+                Wedge(
+                    (float(com[0]), float(com[1])),
+                    0.75 * size,
+                    heading - tol,
+                    heading + tol,
+                    fc=colour,
+                    alpha=0.08,
+                    lw=0,
+                )
             )
             ax.annotate(
-                "", tip, com, arrowprops={"arrowstyle": "->", "color": colour, "lw": 1.2}, zorder=6
+                "",
+                (float(tip[0]), float(tip[1])),
+                (float(com[0]), float(com[1])),
+                arrowprops={"arrowstyle": "->", "color": colour, "lw": 1.2},
+                zorder=6,
             )
-            ax.text(*tip, f"{cls.name}: down", color=colour, fontsize=7, ha="center", zorder=6)
+            ax.text(
+                float(tip[0]),
+                float(tip[1]),
+                f"{cls.name}: down",
+                color=colour,
+                fontsize=7,
+                ha="center",
+                zorder=6,
+            )
     ax.set_title("the part (faces it rests on, numbered)" if not classes else
                  "the part; arrows: down, per orientation class", fontsize=9)  # fmt: skip
     ax.set_aspect("equal")
