@@ -59,7 +59,10 @@ def _revalidate(scene: Scene, result: PlanResult) -> None:
     assert _largest_overlap(scene, result.fine_path) <= AREA_TOL
 
 
-@pytest.mark.parametrize("orientation", ORIENTATIONS)
+@pytest.mark.parametrize(
+    "orientation",
+    [o if o == "heavy_leading" else pytest.param(o, marks=pytest.mark.slow) for o in ORIENTATIONS],
+)  # heavy_trailing: CI's longer job (~5 s)
 @pytest.mark.parametrize(
     "planner,seeds,propagations,needed",
     [

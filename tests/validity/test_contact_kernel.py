@@ -32,6 +32,9 @@ MARGIN = 0.05
 N_POSES = 3000
 TOL = 1e-9  # kernel vs shapely distances (length)
 AXIS_TOL = 1e-6  # the same for a depth along an axis (shapely areas near 0 by bisection)
+# The scenes of the shapely comparisons: each costs 12-15 s of shapely sampling once (_case);
+# table3's in CI's longer job, free-form's by default.
+SCENES = [pytest.param("table3", marks=pytest.mark.slow), "free-form"]
 
 
 def _signed(geom, x: float, y: float) -> float:
@@ -148,9 +151,7 @@ def _push_out(part, piece, nx: float, ny: float) -> float:
     return high
 
 
-@pytest.mark.parametrize(
-    "name", [pytest.param("table3", marks=pytest.mark.slow), "free-form"]
-)  # table3: ~25 s, CI's longer job
+@pytest.mark.parametrize("name", SCENES)
 def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(name: str) -> None:
     """Each contact is explained by one kind with shapely's signed distance equal to its gap;
     for a part corner outside a polygon, stepping 1e-6 along the normal raises the distance by
@@ -177,9 +178,7 @@ def test_every_gap_is_shapelys_signed_distance_and_every_normal_its_gradient(nam
         assert kinds.get("disc", 0) > 20
 
 
-@pytest.mark.parametrize(
-    "name", [pytest.param("table3", marks=pytest.mark.slow), "free-form"]
-)  # table3: ~15 s, CI's longer job
+@pytest.mark.parametrize("name", SCENES)
 def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
     """Completeness: a part corner whose shapely signed distance to the polygons is below the
     margin appears as a contact at that corner: with that gap when outside, with a gap <= 0
@@ -214,7 +213,7 @@ def test_every_part_corner_within_the_margin_is_reported(name: str) -> None:
     assert checked > 1000
 
 
-@pytest.mark.parametrize("name", ["table3", "free-form"])
+@pytest.mark.parametrize("name", SCENES)
 def test_clear_is_a_true_lower_bound_when_nothing_is_in_reach(name: str) -> None:
     scene, arrays, polygons, _, worlds = _case(name)
     discs = [shapely.Point(c[:2]).buffer(c[2], 1024) for c in scene.obstacles.circles]
