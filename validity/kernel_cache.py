@@ -149,10 +149,11 @@ def lock_path() -> Path:
     kernels to: ``NUMBA_CACHE_DIR`` when set, else ``__pycache__`` beside the sources when it
     is writable; else (numba then uses a per-user cache) a per-user file in the temporary
     directory. Processes on different caches never wait for each other."""
-    from numba.core.config import CACHE_DIR
+    from numba.core import config
 
-    if CACHE_DIR:
-        return Path(CACHE_DIR) / LOCK_NAME
+    cache_dir = getattr(config, "CACHE_DIR", "")  # set from NUMBA_CACHE_DIR at numba's import
+    if cache_dir:
+        return Path(cache_dir) / LOCK_NAME
     in_tree = Path(__file__).resolve().parent / "__pycache__"
     try:
         in_tree.mkdir(exist_ok=True)
