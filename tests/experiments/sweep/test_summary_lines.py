@@ -47,15 +47,24 @@ def test_a_summary_written_before_works_in_basis_gives_the_count_from_the_fracti
     assert "4 of 103 in every design" in passive_counts(old)
 
 
-def test_a_pipeline_with_no_cost_reads_n_a_and_a_top_design_with_no_exit_time_too() -> None:
-    summary = {
+def summary_of(passive_line: dict) -> dict:
+    """A sweep's summary of 8 designs with no levels, pruning or best: only ``passive``."""
+    return {
         "name": "s",
         "designs": 8,
         "holdout": 0,
         "levels": [],
         "pruning": [],
         "speedup": None,
-        "passive": passive(),
+        "passive": passive_line,
+        "best": [],
+        "quarantined": [],
+    }
+
+
+def test_a_pipeline_with_no_cost_reads_n_a_and_a_top_design_with_no_exit_time_too() -> None:
+    summary = {
+        **summary_of(passive()),
         "pipelines": [
             {
                 "rungs": ["screen", "passive"],
@@ -67,7 +76,6 @@ def test_a_pipeline_with_no_cost_reads_n_a_and_a_top_design_with_no_exit_time_to
             }
         ],
         "best": [{"design_id": 3, "exit_time_s": None}],
-        "quarantined": [],
     }
     text = summary_table(summary)
     assert "work: 4% [2%, 10%]; 41.5 trials per verdict, 120 drops/s" in text
@@ -78,15 +86,7 @@ def test_a_pipeline_with_no_cost_reads_n_a_and_a_top_design_with_no_exit_time_to
 
 def test_a_passive_line_with_no_trials_counted_reads_n_a() -> None:
     # every design of the basis proven to fail below: none judged, no trials, no drops/s
-    summary = {
-        "name": "s",
-        "designs": 8,
-        "holdout": 0,
-        "levels": [],
-        "pruning": [],
-        "speedup": None,
-        "passive": passive(evaluated=0, works=0, undecided=0, mean_trials=None, drops_per_s=None),
-        "best": [],
-        "quarantined": [],
-    }
+    summary = summary_of(
+        passive(evaluated=0, works=0, undecided=0, mean_trials=None, drops_per_s=None)
+    )
     assert "n/a trials per verdict, n/a drops/s" in summary_table(summary)
