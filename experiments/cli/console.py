@@ -17,7 +17,7 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 from types import ModuleType
-from typing import Any
+from typing import Any, NoReturn
 
 OMPL = "ompl"
 
@@ -83,7 +83,7 @@ def set_ompl_logging(verbose: bool) -> None:
         sys.meta_path.insert(0, _AfterImport(OMPL, lambda: _apply_ompl_logging(verbose)))
 
 
-def exit_now(code: int) -> None:
+def exit_now(code: int) -> NoReturn:
     """Flush our streams and end the process without the interpreter's exit hooks, after
     releasing what multiprocessing releases at exit: its finalizers of priority 0 and above
     unlink the named semaphores of spawn-context pools and queues still alive (an interrupt

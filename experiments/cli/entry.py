@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import _thread
 import argparse
+import gc
 import signal
 import sys
 import threading
@@ -156,8 +157,18 @@ def main(argv: Sequence[str] | None = None) -> None:
     except KeyboardInterrupt:
         stop.quiet()
         print("partfeeder: interrupted", file=sys.stderr)
-        code = 130
+        _exit_holding_the_interrupted_frames(130)
     stop.quiet()
+    exit_now(code)
+
+
+def _exit_holding_the_interrupted_frames(code: int) -> NoReturn:
+    """End the process from inside the ``except`` block, its exception (and so every frame
+    the interrupt unwound) still alive, with the cyclic collector off: an interrupt that lands
+    mid-compile leaves numba's half-built LLVM objects in those frames, and freeing them runs
+    llvmlite's disposers on inconsistent state, a segmentation fault (exit -11 instead of 130,
+    seen once in CI's SIGTERM test). The process is ending; nothing of them is needed."""
+    gc.disable()
     exit_now(code)
 
 

@@ -115,7 +115,7 @@ def _bench_in_a_fresh_cache(tmp_path: Path, attempt: int) -> tuple[subprocess.Po
     3 s of work done (the test tries again if it has ended by then); with what it said."""
     cache = tmp_path / f"numba-cache-{attempt}"
     cache.mkdir()
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), "PYTHONFAULTHANDLER": "1"}
     out = tmp_path / f"bench-{attempt}"
     process = _start(["-m", "experiments.cli", "bench", "--quick", "--out", str(out)], env=env)
     said = _working(process)
