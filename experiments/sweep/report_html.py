@@ -32,7 +32,25 @@ def _speedup_text(speedup: dict | None) -> str:
         f"every design at {top} alone would cost about {quantity(dynamic_cost, 's')} "
         f"(95% CI {interval(speedup.get('dynamic_cost_ci'), '.3g')}): "
         f"a speed-up of {cell(factor)}x (95% CI {interval(speedup.get('speedup_ci'), '.3g')}), "
-        f"estimated on {cell(speedup.get('holdout_n'))} {basis} designs."
+        f"estimated on {cell(speedup.get('holdout_n'))} {basis} designs, "
+        f"{_recall_text(speedup)}."
+    )
+
+
+def _recall_text(row: dict) -> str:
+    """The recall a speed-up was bought at, with its basis (issue 36: never one without
+    the other)."""
+    if "recall" not in row:
+        return "its recall not recorded"
+    n = row.get("recall_n")
+    basis = row.get("recall_basis", "the holdout")
+    if n == 0:
+        return f"its recall unmeasured (no design that works in {basis})"
+    kept = (n or 0) - len(row.get("thrown_away") or [])
+    return (
+        f"at a recall of {cell(row.get('recall'), '.2f')} "
+        f"(95% CI {interval(row.get('recall_ci'), '.2f')}; {kept} of {n} designs that work "
+        f"kept, {basis})"
     )
 
 

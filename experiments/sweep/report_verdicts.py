@@ -243,7 +243,8 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
             "fraction of the designs that work which it would keep (recall), on the designs "
             "that work counted (every design when none could have been stopped on its way, "
             "else the audit's or the holdout's); and its speed-up over the passive verdict "
-            "alone on the same designs.</p>"
+            "alone on the same designs (none when a rung after the first saw no design of "
+            "the sample: how many reached each rung says so).</p>"
         )
         parts.append(
             html_table(
@@ -252,6 +253,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                     "s/design (95% CI)",
                     "n",
                     "on",
+                    "reached each rung",
                     "recall (95% CI)",
                     "of the designs that work",
                     "would throw away",
@@ -263,6 +265,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                         _with_interval(cell(p.get("cost_s"), ".3g"), p.get("cost_ci"), ".3g"),
                         cell(p.get("n")),
                         str(p.get("basis", "the holdout")).removeprefix("the "),
+                        ", ".join(str(k) for k in p.get("reached") or []) or DASH,
                         _with_interval(cell(p.get("recall"), ".2f"), p.get("recall_ci")),
                         f"{cell(p.get('recall_n'))}, {p.get('recall_basis', 'the holdout')}",
                         ", ".join(str(d) for d in p.get("thrown_away") or []) or DASH,
@@ -270,7 +273,7 @@ def verdict_html(summary: dict, figures: dict[str, Path]) -> list[str]:
                     ]
                     for p in pipelines
                 ],
-                text_columns=(0, 3, 5, 6),
+                text_columns=(0, 3, 4, 6, 7),
             )
         )
     best = with_verdicts(summary)

@@ -201,6 +201,8 @@ def _summarise(db: sqlite3.Connection) -> dict[str, Any]:
                 cumulative = [(kept_up_to(d, rung), truth[d]) for d in audited]
                 ladder_pruning.append({"level": level, **_confusion(cumulative)})
         speedup = _speedup(ladder, truth_level, designs, wall, kept_up_to, (judged, audited))
+        if speedup is not None:
+            speedup.update(_ladder_recall(ladder, truth_level, status, kept_up_to, replay))
         if truth_level == PASSIVE:
             pipelines = _pipelines(ladder, (holdout, audit), status, wall, replay)
             thrown_away = _thrown_away(ladder, designs, audit, status, kept_up_to)
@@ -461,7 +463,12 @@ def _pipelines(ladder, samples, status, wall, replay: _Replay) -> list[dict[str,
         ci: list[float | None] = [None, None]
         speedup: float | None = None
         speedup_ci: list[float | None] = [None, None]
-        if len(full):
+        depth = [_reached(d, rungs, status) for d in full]
+        reached = [sum(1 for k in depth if k > rung) for rung in range(len(rungs))]
+        # a rung after the first that no design of the sample reached: the row's cost is its
+        # first rungs' alone, and a speed-up from it would be the screen's (issue 36: 14.73x)
+        unreached = [level for level, n in zip(rungs, reached, strict=True) if n == 0]
+        if len(full) and not unreached:
             resample = np.random.default_rng(0).integers(
                 0, len(full), (BOOTSTRAP_SAMPLES, len(full))
             )
@@ -479,6 +486,8 @@ def _pipelines(ladder, samples, status, wall, replay: _Replay) -> list[dict[str,
                 "cost_s": mean,
                 "cost_ci": ci,
                 "n": len(full),
+                "reached": reached,
+                "unreached": unreached,
                 "basis": _basis(holdout, pool),
                 **replay.recall(rungs[:-1]),
                 "speedup": speedup,
@@ -486,6 +495,40 @@ def _pipelines(ladder, samples, status, wall, replay: _Replay) -> list[dict[str,
             }
         )
     return out
+
+
+def _ladder_recall(ladder, truth_level, status, kept_up_to, replay: _Replay) -> dict[str, Any]:
+    """The recall of the ladder's own decisions up to the truth (the designs that work that
+    no rung below it stopped), on :class:`_Replay`'s basis for the rungs below the truth: the
+    recall that goes beside the ladder's speed-up (issue 36: "4.26x [2.63, 6.55]" was printed
+    for a ladder whose recall was 0 of 2). With nothing below the truth, every design that
+    works is kept (``recall_basis`` "every design")."""
+    top = ladder.index(truth_level)
+    below = ladder[:top]
+    pool, basis = replay.pool(below) if below else (replay.designs, "every design")
+    works = [
+        d
+        for d in pool
+        if status.get((d, truth_level)) == "feasible"
+        and all((d, level) in status for level in below)
+    ]
+    lost = [d for d in works if below and not kept_up_to(d, top - 1)]
+    ratio = _ratio(len(works) - len(lost), len(works))
+    return {
+        "recall": ratio["value"],
+        "recall_ci": ratio["ci"],
+        "recall_n": len(works),
+        "recall_basis": basis,
+        "thrown_away": lost,
+    }
+
+
+def _reached(d: int, rungs: list[str], status) -> int:
+    """How many of ``rungs`` design ``d`` reaches, stopping at the first it does not pass."""
+    for k, level in enumerate(rungs):
+        if status[(d, level)] != "feasible":
+            return k + 1
+    return len(rungs)
 
 
 def _replayed_cost(d: int, rungs: list[str], status, wall) -> float:
@@ -599,8 +642,7 @@ def summary_table(summary: dict[str, Any]) -> str:
     if s:
         lines.append(
             f"speed-up of the ladder up to {s['top_level']} over {s['top_level']} only: "
-            f"{s['speedup']:.2f}x "
-            f"[{s['speedup_ci'][0]:.2f}, {s['speedup_ci'][1]:.2f}] "
+            f"{speedup_with_recall(s['speedup'], s.get('speedup_ci'), s)} "
             f"({s['ladder_cost_s']:.0f} s of worker time vs ~{s['dynamic_cost_s']:.0f} s)"
         )
     p = summary.get("passive")
@@ -612,19 +654,7 @@ def summary_table(summary: dict[str, Any]) -> str:
             f"{'n/a' if rate is None else f'{rate:.0f}'} drops/s"
         )
     for pipe in summary.get("pipelines") or []:
-        cost = "n/a" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f} s/design"
-        speedup = "-" if pipe["speedup"] is None else f"{pipe['speedup']:.2f}x"
-        low, high = pipe.get("speedup_ci") or [None, None]
-        if low is not None and high is not None:
-            speedup += f" [{low:.2f}, {high:.2f}]"
-        lost = pipe.get("thrown_away") or []
-        lines.append(
-            f"pipeline {' -> '.join(pipe['rungs'])}: {cost} "
-            f"({pipe.get('basis', 'the holdout').removeprefix('the ')} n={pipe['n']}), "
-            f"recall {_pct(pipe['recall'])} [{_pct(pipe['recall_ci'][0])}, "
-            f"{_pct(pipe['recall_ci'][1])}] {_recall_basis(pipe)}, speed-up {speedup}"
-            + (f"; would throw away {', '.join(str(d) for d in lost)}" if lost else "")
-        )
+        lines.append(pipeline_line(pipe))
     lost = summary.get("thrown_away")
     if lost:
         lines.append(thrown_away_sentence(lost))
@@ -641,6 +671,57 @@ def summary_table(summary: dict[str, Any]) -> str:
     for q in summary["quarantined"]:
         lines.append(f"quarantined: design {q['design_id']} at {q['level']}: {q['reason']}")
     return "\n".join(lines)
+
+
+def pipeline_line(pipe: dict[str, Any]) -> str:
+    """One pipeline's line: on how many designs it was measured and how many reached each of
+    its rungs; its cost and speed-up, the speed-up with its recall beside it
+    (:func:`speedup_with_recall`); or, when a rung after the first saw no design of the
+    sample, that it did, and no cost or speed-up (issue 36: every pipeline that starts with
+    the screen printed the screen's "14.73x" when no holdout design passed it)."""
+    rungs = pipe["rungs"]
+    basis = pipe.get("basis", "the holdout").removeprefix("the ")
+    reached = pipe.get("reached")
+    sample = f"{basis} n={pipe['n']}"
+    if reached is not None:
+        sample += "; reached " + ", ".join(
+            f"{level} {n}" for level, n in zip(rungs, reached, strict=True)
+        )
+    head = f"pipeline {' -> '.join(rungs)}: "
+    unreached = pipe.get("unreached") or []
+    if pipe["n"] and unreached:
+        return (
+            head + f"measured on {pipe['n']} {basis} designs ({sample}): no design reached "
+            f"{' or '.join(unreached)}, so no cost or speed-up is given"
+        )
+    cost = "n/a" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f} s/design"
+    lost = pipe.get("thrown_away") or []
+    return (
+        head
+        + f"{cost} ({sample}), speed-up "
+        + speedup_with_recall(pipe["speedup"], pipe.get("speedup_ci"), pipe)
+        + (f"; would throw away {', '.join(str(d) for d in lost)}" if lost else "")
+    )
+
+
+def speedup_with_recall(
+    speedup: float | None, ci: list[float | None] | None, row: dict[str, Any]
+) -> str:
+    """A speed-up with its interval and, beside it, the recall it was bought at with its
+    basis: "4.26x [2.63, 6.55] at recall 0% [0%, 66%] (0 of 2 that work, the holdout)". A
+    speed-up is never printed alone (issue 36): with no design that works in the basis the
+    recall is said to be unmeasured, and a row without a recall says so."""
+    text = "-" if speedup is None else f"{speedup:.2f}x"
+    low, high = ci or [None, None]
+    if speedup is not None and low is not None and high is not None:
+        text += f" [{low:.2f}, {high:.2f}]"
+    if "recall" not in row:
+        return f"{text} (its recall not recorded)"
+    if row.get("recall_n") == 0:
+        basis = row.get("recall_basis", "the holdout")
+        return f"{text} at recall unmeasured (no design that works in {basis})"
+    lo, hi = row.get("recall_ci") or [None, None]
+    return f"{text} at recall {_pct(row['recall'])} [{_pct(lo)}, {_pct(hi)}] {_recall_basis(row)}"
 
 
 def passive_counts(p: dict[str, Any]) -> str:

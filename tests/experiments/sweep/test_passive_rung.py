@@ -18,7 +18,7 @@ from experiments.sweep import results_db
 from experiments.sweep.config import ConfigError, config_from_dict
 from experiments.sweep.job import evaluate_design, sweep_job, verdict_seed
 from experiments.sweep.ladder import run_sweep
-from experiments.sweep.summary import summarise
+from experiments.sweep.summary import summarise, summary_table
 from feeders.design import PRESETS, DesignParameters
 from feeders.halton import halton_points
 from feeders.part import DEFAULT_PEG
@@ -184,12 +184,60 @@ def test_pipelines_replay_the_holdout_by_hand(tmp_path: Path) -> None:
     assert pipes[("geometric", "passive")]["cost_s"] == pytest.approx(1.15)
     assert pipes[("geometric", "passive")]["recall"] == 0.5
     assert pipes[("geometric", "passive")]["speedup"] == pytest.approx(0.3 / 1.15)
+    # all 4 reach geometric; designs 0 and 3 pass it and reach the verdict
+    assert pipes[("geometric", "passive")]["reached"] == [4, 2]
+    # the ladder's own geometric rung does not prune (a planner's miss is "unknown" and
+    # climbs on): up to the verdict it keeps both designs that work, a census
+    ladder = summary["speedup"]
+    assert (ladder["recall_n"], ladder["thrown_away"]) == (2, [])
+    assert ladder["recall_basis"] == "every design"
     assert [b["design_id"] for b in summary["best"]] == [0, 1]
     assert summary["best"][0]["exit_time_s"] == 2.0
     pruning = summary["pruning"][0]
     assert (pruning["tp"], pruning["fp"], pruning["fn"], pruning["tn"]) == (1, 1, 1, 1)
     assert summary["passive"]["works_basis"] == "the holdout"
     assert summary["passive"]["works_fraction"] == 0.5
+
+
+def test_a_pipeline_whose_verdict_no_holdout_design_reached_has_no_speed_up(
+    tmp_path: Path,
+) -> None:
+    """Geometric, pruning, stops all 4 holdout designs (1.0 s each; their verdicts 0.5 s
+    each, 2 work): geometric -> passive reached the verdict with none of them, so its cost
+    would be geometric's alone and its speed-up meaningless (issue 36); the row says so, and
+    the ladder's speed-up says that it kept 0 of the 2 that work."""
+    config = config_from_dict(
+        {
+            **PASSIVE_ONLY,
+            "designs": {"count": 4, "seed": 1},
+            "ladder": [{**TINY["ladder"][0], "prunes": True}, {"level": "passive"}],
+            "holdout": {"fraction": 1.0, "seed": 7},
+        }
+    )
+    path = tmp_path / "results.sqlite"
+    db = results_db.connect(path)
+    try:
+        results_db.claim(db, config.to_dict(), config.results_key())
+        points = halton_points(4, 1)
+        results_db.add_designs(db, ((i, True, list(points[i])) for i in range(4)))
+        for d in range(4):
+            works = d < 2
+            verdict = (
+                fake_verdict("works", 40, 40, 2.0) if works else fake_verdict("fails", 0, 10, None)
+            )
+            results_db.record(db, fake_result(d, "geometric", "infeasible", 1.0), 0, 1)
+            passive = "feasible" if works else "infeasible"
+            results_db.record(db, fake_result(d, "passive", passive, 0.5, verdict), 1, 1)
+    finally:
+        db.close()
+    summary = summarise(path)
+    pipe = next(p for p in summary["pipelines"] if p["rungs"] == ["geometric", "passive"])
+    assert pipe["reached"] == [4, 0]
+    assert pipe["unreached"] == ["passive"]
+    assert pipe["speedup"] is None and pipe["cost_s"] is None
+    text = summary_table(summary)
+    assert "no design reached passive, so no cost or speed-up is given" in text
+    assert "at recall 0% [0%, 66%] (0 of 2 that work, the holdout)" in text
 
 
 def _claimed(path: Path, statement: str, *values) -> Path:

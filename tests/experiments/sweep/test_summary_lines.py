@@ -4,7 +4,9 @@ and never print a unit after an unknown value."""
 
 from __future__ import annotations
 
-from experiments.sweep.summary import passive_counts, summary_table
+import re
+
+from experiments.sweep.summary import passive_counts, pipeline_line, summary_table
 
 
 def passive(**changed) -> dict:
@@ -79,7 +81,7 @@ def test_a_pipeline_with_no_cost_reads_n_a_and_a_top_design_with_no_exit_time_to
     }
     text = summary_table(summary)
     assert "work: 4% [2%, 10%]; 41.5 trials per verdict, 120 drops/s" in text
-    assert "pipeline screen -> passive: n/a (holdout n=0)" in text
+    assert "pipeline screen -> passive: n/a (holdout n=0), speed-up - at recall" in text
     assert "top: design 3, exit time n/a" in text
     assert "- s" not in text
 
@@ -90,3 +92,101 @@ def test_a_passive_line_with_no_trials_counted_reads_n_a() -> None:
         passive(evaluated=0, works=0, undecided=0, mean_trials=None, drops_per_s=None)
     )
     assert "n/a trials per verdict, n/a drops/s" in summary_table(summary)
+
+
+def pipeline(**changed) -> dict:
+    """A pipeline row as ``_pipelines`` writes it: screen -> passive on the audit's 64
+    designs, 4 of which reached the verdict, all 4 that work kept."""
+    return {
+        "rungs": ["screen", "passive"],
+        "cost_s": 0.04,
+        "cost_ci": [0.03, 0.05],
+        "n": 64,
+        "reached": [64, 4],
+        "unreached": [],
+        "basis": "the audit",
+        "recall": 1.0,
+        "recall_ci": [0.51, 1.0],
+        "recall_n": 4,
+        "recall_basis": "the audit",
+        "thrown_away": [],
+        "speedup": 1.97,
+        "speedup_ci": [1.49, 3.18],
+        **changed,
+    }
+
+
+def test_a_pipeline_says_how_many_designs_reached_each_rung_and_its_recall_beside_its_speed_up():
+    assert pipeline_line(pipeline()) == (
+        "pipeline screen -> passive: 0.04 s/design (audit n=64; reached screen 64, passive 4), "
+        "speed-up 1.97x [1.49, 3.18] at recall 100% [51%, 100%] (4 of 4 that work, the audit)"
+    )
+
+
+def test_a_pipeline_whose_later_rungs_saw_no_design_prints_no_speed_up() -> None:
+    # issue 36: no holdout design passed the screen, so every pipeline starting with it
+    # printed the screen's cost as "14.73x"
+    row = pipeline(
+        rungs=["screen", "geometric", "passive"],
+        n=8,
+        basis="the holdout",
+        reached=[8, 0, 0],
+        unreached=["geometric", "passive"],
+        cost_s=None,
+        speedup=None,
+        speedup_ci=[None, None],
+    )
+    line = pipeline_line(row)
+    assert line == (
+        "pipeline screen -> geometric -> passive: measured on 8 holdout designs (holdout n=8; "
+        "reached screen 8, geometric 0, passive 0): no design reached geometric or passive, so "
+        "no cost or speed-up is given"
+    )
+    assert "x [" not in line
+
+
+def test_a_speed_up_bought_with_every_working_design_says_recall_0_of_2_beside_it() -> None:
+    # paper.yaml's cut-down run printed "4.26x [2.63, 6.55]" for a ladder whose recall was 0
+    # of 2: the old line had no recall at all
+    row = {
+        "top_level": "passive",
+        "speedup": 4.26,
+        "speedup_ci": [2.63, 6.55],
+        "ladder_cost_s": 10.0,
+        "dynamic_cost_s": 42.6,
+        "recall": 0.0,
+        "recall_ci": [0.0, 0.66],
+        "recall_n": 2,
+        "recall_basis": "the holdout",
+        "thrown_away": [5, 9],
+    }
+    text = summary_table({**summary_of(passive()), "speedup": row})
+    assert (
+        "speed-up of the ladder up to passive over passive only: 4.26x [2.63, 6.55] at recall "
+        "0% [0%, 66%] (0 of 2 that work, the holdout) (10 s of worker time vs ~43 s)"
+    ) in text
+
+
+def test_every_printed_speed_up_has_a_recall_beside_it() -> None:
+    rows = [
+        pipeline(),
+        pipeline(recall_n=0, recall=None, recall_ci=[None, None], basis="the holdout"),
+        pipeline(rungs=["passive"], reached=[4], speedup=1.0, speedup_ci=[1.0, 1.0]),
+    ]
+    summary = {
+        **summary_of(passive()),
+        "speedup": {
+            "top_level": "passive",
+            "speedup": 2.0,
+            "speedup_ci": [1.5, 2.5],
+            "ladder_cost_s": 1.0,
+            "dynamic_cost_s": 2.0,
+        },
+        "pipelines": rows,
+    }
+    speed_lines = [line for line in summary_table(summary).splitlines() if "x [" in line]
+    assert len(speed_lines) == 4
+    for line in speed_lines:
+        assert re.search(r"\d\.\d\dx \[[\d.]+, [\d.]+\] (at recall|\(its recall)", line), line
+    assert "at recall unmeasured (no design that works in the audit)" in speed_lines[2]
+    assert "(its recall not recorded)" in speed_lines[0]
