@@ -136,6 +136,22 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         help="comma-separated subset of partfeeder,mujoco,pymunk",
     )
     agreement.add_argument("--workers", type=int, default=1, help="worker processes (default 1)")
+    agreement.add_argument(
+        "--family",
+        type=Path,
+        default=None,
+        help="a device family YAML file (docs/families.md), or the name of one packaged with "
+        "partfeeder (fig1, fig1-cup): the family verdict's drops of its part through its "
+        "devices, the peers' bodies built from the part's pieces (issue 35); --design then "
+        "takes default, halton:SEED:INDEX or the family's values",
+    )
+    agreement.add_argument(
+        "--pymunk-radius",
+        type=float,
+        default=None,
+        help="with --family: pymunk's wall segment radius, the rounding of the walls' convex "
+        "corners (default 1e-3, length)",
+    )
 
 
 def _detail(args: argparse.Namespace, repeats: int) -> int:
@@ -227,6 +243,9 @@ def _agreement(args: argparse.Namespace) -> int:
         )
     if not 1 <= args.workers <= 64:
         raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
+    if args.family is None and args.pymunk_radius is not None:
+        raise UsageError("--pymunk-radius needs --family (the peg feeder's radius is fixed)")
+    family_file = _family_file(args) if args.family is not None else None
     out = _out(args)
     if out is not None:
         check_out_dir(out)
@@ -238,6 +257,8 @@ def _agreement(args: argparse.Namespace) -> int:
                 f"{module.ENGINE} is not installed (pip install 'partfeeder[bench]'), or leave it "
                 "out with --engines"
             )
+    if family_file is not None:
+        return _family_agreement(args, family_file, trials, engines, out)
     from experiments.bench.agreement.designs import default_designs, named_design
     from experiments.bench.agreement.report import markdown, write_outputs, written_data
     from experiments.bench.agreement.suite import AgreementSettings, agreement_data
@@ -258,6 +279,77 @@ def _agreement(args: argparse.Namespace) -> int:
     data = agreement_data(
         designs,
         settings,
+        args.workers,
+        progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
+    )
+    written = written_data(data)
+    paths = write_outputs(data, out) if out is not None else []
+    if args.json:
+        print(json.dumps(written["tables"], indent=1))
+    else:
+        print(markdown(written))
+        _wrote(paths)
+    return 0
+
+
+PYMUNK_RADIUS_RANGE = (1e-5, 0.05)  # length: the rounding of the walls' convex corners
+
+
+def _family_file(args: argparse.Namespace) -> str:
+    """The file ``--family`` names (a file or a packaged family), loaded once to check it, and
+    ``--pymunk-radius`` checked: UsageError (one line) otherwise."""
+    from experiments.cli.scenes import family_path
+    from feeders.device_family import FamilyError, load_family
+
+    path = family_path(args.family)
+    try:
+        load_family(path)
+    except FamilyError as exc:
+        raise UsageError(str(exc)) from None
+    radius = args.pymunk_radius
+    if radius is not None and not PYMUNK_RADIUS_RANGE[0] <= radius <= PYMUNK_RADIUS_RANGE[1]:
+        raise UsageError(
+            f"--pymunk-radius = {radius!r} is outside the allowed range "
+            f"[{PYMUNK_RADIUS_RANGE[0]:g}, {PYMUNK_RADIUS_RANGE[1]:g}]"
+        )
+    return str(path)
+
+
+def _family_agreement(
+    args: argparse.Namespace, family_file: str, trials: int, engines: tuple, out: Path | None
+) -> int:
+    """``--agreement --family``: the family verdict's drops in every engine (issue 35)."""
+    from experiments.bench.agreement.family import (
+        FamilySuite,
+        default_family_designs,
+        family_agreement_data,
+        family_design,
+    )
+    from experiments.bench.agreement.report import markdown, write_outputs, written_data
+    from experiments.bench.agreement.suite import AgreementSettings
+    from experiments.bench.peers.compound import ROUNDING
+    from feeders.device_family import load_family
+    from feeders.feeder import DegenerateDesign
+
+    family = load_family(family_file)
+    tokens = args.design or (("default",) if args.quick else default_family_designs(family))
+    designs = []
+    for token in tokens:
+        try:
+            design = family_design(family, token)
+            family.build(design.values)
+        except (ValueError, DegenerateDesign) as exc:
+            raise UsageError(f"--design {token}: {exc}") from None
+        designs.append(design)
+    settings = AgreementSettings(
+        trials=trials, seed=args.draw_seed, peer_step=args.peer_step, engines=engines
+    )
+    radius = ROUNDING[0] if args.pymunk_radius is None else args.pymunk_radius
+    if "partfeeder" in engines and args.workers > 1:
+        compile_once(["dynamic"])
+    data = family_agreement_data(
+        FamilySuite(family_file, settings, radius),
+        designs,
         args.workers,
         progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
     )

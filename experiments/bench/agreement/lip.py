@@ -66,7 +66,10 @@ def closed_form_speed(scene: Scene, start: Sequence[float], distance: float) -> 
 def lip_speed(scene: Scene, start: Sequence[float], states: np.ndarray) -> LipSpeed | None:
     """The part's speed just past the lip in a drop's ``states`` (rows x, y, yaw, vx, vy,
     omega, the start first) against the closed form; None when the centre of mass never gets
-    within ``PAST_LIP`` of the lip (stuck in the chute) or starts there."""
+    within ``PAST_LIP`` of the lip (stuck in the chute) or starts there, and for a scene with
+    no 12-parameter design (a device family's: its lip is not named, issue 35)."""
+    if scene.design is None:
+        return None
     along = along_chute(scene, states[:, :2])
     if along[0] <= PAST_LIP:
         return None

@@ -9,7 +9,6 @@ import math
 from pathlib import Path
 
 from experiments.bench.agreement.lip import PAST_LIP, SLOW
-from feeders.feeder import ORIENTATIONS
 
 SHORT = {"heavy_leading": "leading", "heavy_trailing": "trailing"}
 
@@ -23,23 +22,32 @@ def markdown(data: dict) -> str:
     """The tables as Markdown (``data`` as :func:`write_outputs` stores it)."""
     t, s = data["tables"], data["settings"]
     engines = data["engines"]
+    first = next(iter(t["success"].values()), {}).get(engines[0], {})
+    entries = max(1, len(first) - 1)  # the entries and "both"
+    family = (
+        [f"Device family {data['family']['name']}: {data['family']['model']}"]
+        if (data.get("family"))
+        else []
+    )
     lines = [
         "# Agreement: the same perturbed drops in partfeeder, MuJoCo and pymunk",
         "",
-        f"{len(t['success'])} designs x 2 entries x {s['trials']} trials (draw seed {s['seed']}); "
+        *family,
+        f"{len(t['success'])} designs x {entries} entries x {s['trials']} trials "
+        f"(draw seed {s['seed']}); "
         f"partfeeder at h = {s['partfeeder_step']:g} s, peers at h = {s['peer_step']:g} s; "
         f"t_max {s['t_max']:g} s; wall time {data['wall_time_s']:.0f} s"
         f"{' on ' + str(data['workers']) + ' workers' if data['workers'] > 1 else ''}.",
         f"Versions: {', '.join(f'{k} {v}' for k, v in data['versions'].items())}. "
         f"Contact kernel: {data['kernel']}.",
         "",
-        "## Success per design and entry (heavy end down; Wilson 95%)",
+        "## Success per design and entry (in the goal; Wilson 95%)",
         "",
         "| design | entry | " + " | ".join(engines) + " |",
         "|---|---|" + "---|" * len(engines),
     ]
     for design, by in t["success"].items():
-        for entry in (*ORIENTATIONS, "both"):
+        for entry in by[engines[0]]:  # the entries, then "both"
             cells = [_f(by[e][entry]) for e in engines]
             lines.append(f"| {design} | {SHORT.get(entry, entry)} | " + " | ".join(cells) + " |")
     lines += ["", "## Per-drop agreement, every pair of engines (same drops)", ""]
@@ -80,7 +88,39 @@ def markdown(data: dict) -> str:
         "- designs whose partfeeder verdict differs from both peers (which agree): "
         + (", ".join(odd) if odd else "none")
     )
+    if any(t["lip"][e]["measured"] for e in engines):
+        lines += _lip_lines(t, engines)
+    else:
+        lines += ["", "No lip speed: no drop reached a named lip (a device family names none)."]
+    order = " / ".join(engines)
+    lines += ["", f"## Outcome classes side by side (drops per engine: {order})", ""]
+    lines += ["| design | entry | class | drops |", "|---|---|---|---|"]
+    for design, by_entry in t["outcomes"].items():
+        for entry, classes in by_entry.items():
+            for c, counts in classes.items():
+                lines.append(
+                    f"| {design} | {SHORT.get(entry, entry)} | {c} | "
+                    + " / ".join(str(counts[e]) for e in engines)
+                    + " |"
+                )
     lines += [
+        "",
+        "## Cost",
+        "",
+        "| engine | h (s) | drops | wall (s) | per drop (s) | mean T (s) |",
+    ]
+    lines += ["|---|---|---|---|---|---|"]
+    for engine, c in t["timing"].items():
+        lines.append(
+            f"| {engine} | {c['h']:g} | {c['drops']} | {c['wall_s']:.1f} | "
+            f"{c['mean_wall_s']:.3f} | {c['mean_T_s']:.2f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def _lip_lines(t: dict, engines: list[str]) -> list[str]:
+    """The lip-speed tables (the peg feeder's lip, :mod:`.lip`)."""
+    lines = [
         "",
         f"## Speed just past the lip (centre of mass {PAST_LIP:g} before it) / sliding closed form",
         "",
@@ -105,30 +145,7 @@ def markdown(data: dict) -> str:
             low = f", min {c['min']:.2f}" if c["measured"] else ""
             cells.append(f"{c['slow']}/{c['measured']}{low}")
         lines.append(f"| {key} | " + " | ".join(cells) + " |")
-    order = " / ".join(engines)
-    lines += ["", f"## Outcome classes side by side (drops per engine: {order})", ""]
-    lines += ["| design | entry | class | drops |", "|---|---|---|---|"]
-    for design, by_entry in t["outcomes"].items():
-        for entry, classes in by_entry.items():
-            for c, counts in classes.items():
-                lines.append(
-                    f"| {design} | {SHORT[entry]} | {c} | "
-                    + " / ".join(str(counts[e]) for e in engines)
-                    + " |"
-                )
-    lines += [
-        "",
-        "## Cost",
-        "",
-        "| engine | h (s) | drops | wall (s) | per drop (s) | mean T (s) |",
-    ]
-    lines += ["|---|---|---|---|---|---|"]
-    for engine, c in t["timing"].items():
-        lines.append(
-            f"| {engine} | {c['h']:g} | {c['drops']} | {c['wall_s']:.1f} | "
-            f"{c['mean_wall_s']:.3f} | {c['mean_T_s']:.2f} |"
-        )
-    return "\n".join(lines) + "\n"
+    return lines
 
 
 def figure(data: dict, path: Path) -> None:
@@ -141,10 +158,11 @@ def figure(data: dict, path: Path) -> None:
 
     t, engines = data["tables"], data["engines"]
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 5), gridspec_kw={"width_ratios": [2, 1]})
-    labels = [f"{d}\n{SHORT[e]}" for d in t["success"] for e in ORIENTATIONS]
+    entries = [e for e in next(iter(t["success"].values()))[engines[0]] if e != "both"]
+    labels = [f"{d}\n{SHORT.get(e, e)}" for d in t["success"] for e in entries]
     for j, engine in enumerate(engines):
         xs, ps, lo, hi = [], [], [], []
-        cells = [by[engine][e] for by in t["success"].values() for e in ORIENTATIONS]
+        cells = [by[engine][e] for by in t["success"].values() for e in entries]
         for i, c in enumerate(cells):
             xs.append(i + (j - 1) * 0.2)
             ps.append(c["p"])
@@ -153,7 +171,7 @@ def figure(data: dict, path: Path) -> None:
         ax1.errorbar(xs, ps, yerr=[lo, hi], fmt="o", capsize=2, label=engine)
     ax1.axhline(data["settings"]["target"], color="grey", lw=0.8, ls="--")
     ax1.set_xticks(range(len(labels)), labels, rotation=60, fontsize=7)
-    ax1.set_ylabel("P(heavy end down), Wilson 95%")
+    ax1.set_ylabel("P(in the goal), Wilson 95%")
     ax1.legend()
     ratios = {e: [r["lip_ratio"] for r in data["drops"] if r["engine"] == e] for e in engines}
     for j, engine in enumerate(engines):

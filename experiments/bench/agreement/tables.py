@@ -26,7 +26,6 @@ from experiments.bench.agreement.lip import SLOW
 from experiments.bench.agreement.suite import DropRow
 from experiments.drop.verdict import CLASSES, UNBUILDABLE, decide
 from experiments.proportions import wilson_interval
-from feeders.feeder import ORIENTATIONS
 
 
 def _fraction(k: int, n: int) -> dict:
@@ -47,21 +46,26 @@ def engines_of(rows: Sequence[DropRow]) -> list[str]:
     return list(dict.fromkeys(r.engine for r in rows))
 
 
+def entries_of(rows: Sequence[DropRow]) -> list[str]:
+    """The entry orientations in the order they were run (the peg feeder's two, or a device
+    family's, issue 35)."""
+    return list(dict.fromkeys(r.entry for r in rows))
+
+
 def success_table(rows: Sequence[DropRow]) -> dict:
     """design -> engine -> {entry: fraction, "both": fraction}."""
     out: dict = {}
     by = _index(rows)
+    entries = entries_of(rows)
     for design in designs_of(rows):
         trials = sorted({r.trial for r in rows if r.design == design})
         out[design] = {}
         for engine in engines_of(rows):
             cell = {}
-            for entry in ORIENTATIONS:
+            for entry in entries:
                 k = sum(by[(design, t, entry, engine)].success for t in trials)
                 cell[entry] = _fraction(k, len(trials))
-            both = sum(
-                all(by[(design, t, e, engine)].success for e in ORIENTATIONS) for t in trials
-            )
+            both = sum(all(by[(design, t, e, engine)].success for e in entries) for t in trials)
             cell["both"] = _fraction(both, len(trials))
             out[design][engine] = cell
     return out
@@ -71,10 +75,11 @@ def outcome_table(rows: Sequence[DropRow]) -> dict:
     """design -> entry -> outcome class -> engine -> drops (classes some engine saw)."""
     out: dict = {}
     engines = engines_of(rows)
+    classes = list(dict.fromkeys([*CLASSES, *(r.outcome for r in rows)]))  # a family's too
     for design in designs_of(rows):
         out[design] = {}
-        for entry in ORIENTATIONS:
-            counts = {c: dict.fromkeys(engines, 0) for c in CLASSES}
+        for entry in entries_of(rows):
+            counts = {c: dict.fromkeys(engines, 0) for c in classes}
             for r in rows:
                 if r.design == design and r.entry == entry:
                     counts[r.outcome][r.engine] += 1
@@ -124,12 +129,13 @@ def verdict_table(rows: Sequence[DropRow], target: float) -> dict:
     the designs where partfeeder differs from both peers and the peers agree."""
     success = success_table(rows)
     engines = engines_of(rows)
+    entries = entries_of(rows)
     decisions: dict[str, dict[str, str]] = {}
     for design, by_engine in success.items():
         decisions[design] = {}
         for engine, cell in by_engine.items():
-            counts = [cell[e]["k"] for e in ORIENTATIONS]
-            decisions[design][engine] = decide(counts, cell[ORIENTATIONS[0]]["n"], target)
+            counts = [cell[e]["k"] for e in entries]
+            decisions[design][engine] = decide(counts, cell[entries[0]]["n"], target)
     pairs = {}
     for a, b in itertools.combinations(engines, 2):
         same = sum(decisions[d][a] == decisions[d][b] for d in decisions)
@@ -153,7 +159,7 @@ def lip_table(rows: Sequence[DropRow]) -> dict:
         slow = int(np.sum(ratios < SLOW))
         per = {}
         for design in designs_of(rows):
-            for entry in ORIENTATIONS:
+            for entry in entries_of(rows):
                 sel = [r.lip_ratio for r in mine if r.design == design and r.entry == entry]
                 fin = [v for v in sel if math.isfinite(v)]
                 per[f"{design} {entry}"] = {

@@ -159,11 +159,18 @@ def _prism_mesh(name: str, polygon: np.ndarray, depth: float) -> str:
     return f'    <mesh name="{name}" vertex="{_vec(vertices)}"/>'
 
 
-def feeder_model_xml(scene: Scene, h: float) -> str:
-    """MJCF of a scene with general convex pieces and discs (a feeder) at timestep ``h``."""
+def feeder_model_xml(
+    scene: Scene,
+    h: float,
+    part_body: Callable[[Scene, str], tuple[list[str], str]] | None = None,
+) -> str:
+    """MJCF of a scene with general convex pieces and discs (a feeder) at timestep ``h``;
+    ``part_body(scene, mu)`` gives the part's mesh assets and body (default: the peg's box,
+    no assets; :mod:`.compound` gives any part's pieces)."""
     mu = f"{scene.friction:.17g} 0.005 0.0001"
     gx, gy = scene.gravity
-    meshes, geoms = [], []
+    part_assets, body = part_body(scene, mu) if part_body else ([], _part_body(scene, mu))
+    meshes, geoms = list(part_assets), []
     for k, polygon in enumerate(scene.obstacles.polygons):
         meshes.append(_prism_mesh(f"piece{k}", polygon, OBSTACLE_DEPTH))
         geoms.append(f'    <geom name="obstacle{k}" type="mesh" mesh="piece{k}" friction="{mu}"/>')
@@ -181,7 +188,7 @@ def feeder_model_xml(scene: Scene, h: float) -> str:
   </asset>
   <worldbody>
 {chr(10).join(geoms)}
-{_part_body(scene, mu)}
+{body}
   </worldbody>
 </mujoco>
 """

@@ -136,6 +136,7 @@ class PymunkFeederSimulator:
         h: float,
         iterations: int = FEEDER_ITERATIONS,
         collision_slop: float = FEEDER_SLOP,
+        radius: float = SEGMENT_RADIUS,
     ):
         import pymunk
 
@@ -144,7 +145,8 @@ class PymunkFeederSimulator:
         self.h = float(h)
         self.iterations = int(iterations)
         self.collision_slop = float(collision_slop)
-        self.chains = outline_chains(scene, offset=SEGMENT_RADIUS)
+        self.radius = float(radius)
+        self.chains = outline_chains(scene, offset=self.radius)
         self.space = pymunk.Space()
         self.body = pymunk.Body()
 
@@ -158,12 +160,17 @@ class PymunkFeederSimulator:
         for chain in self.chains:
             for before, a, b, after in chain_segments(chain):
                 seg = pymunk.Segment(
-                    space.static_body, tuple(map(float, a)), tuple(map(float, b)), SEGMENT_RADIUS
+                    space.static_body, tuple(map(float, a)), tuple(map(float, b)), self.radius
                 )
                 seg.set_neighbors(tuple(map(float, before)), tuple(map(float, after)))
                 seg.friction, seg.elasticity = 1.0, 0.0
                 space.add(seg)
-        self.space, self.body = space, _add_discs_and_part(pymunk, space, scene, start)
+        self.space, self.body = space, self._add_part(space, start)
+
+    def _add_part(self, space, start: Sequence[float]):
+        """Add the discs and the part at ``start`` to ``space``; returns the part's body (the
+        peg as one polygon here; :class:`.compound.PymunkCompoundSimulator`: any part)."""
+        return _add_discs_and_part(self.pymunk, space, self.scene, start)
 
     def run(self, out: np.ndarray) -> None:
         """Take ``len(out)`` steps; row k of ``out`` gets the state after step k + 1."""
