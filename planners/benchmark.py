@@ -24,6 +24,15 @@ not do are added here, without changing what it measures:
 Every run is seeded (OMPL's generator and the goal sampler) with ``seed + run``, so planner A's
 run r and planner B's run r start from the same seed, and the same arguments give the same
 log when the budget is a count of propagations.
+
+With ``progress_every`` (a count of propagations) each run also records its progress, which
+OMPL's log carries as "progress properties" and Planner Arena plots over time: every
+``progress_every`` propagations, the propagations made, the tree's size and the best distance
+to the goal of any state the planner has checked against it so far in the run. The clock of
+those plots is the machine-independent one: the progress's "time" is the count of
+propagations, and so is the experiment's time limit (the log's "seconds per run" line holds
+the propagation budget; the experiment parameter ``time_unit`` = ``propagations`` says so).
+The runs' own "time" stays OMPL's wall-clock seconds.
 """
 
 from __future__ import annotations
@@ -47,6 +56,15 @@ from planners.plan import ControlProblem, PlannerSettings, control_problem, seed
 from planners.registry import PLANNERS, make_planner
 
 MEMORY_LIMIT_MB = 4096.0  # OMPL's per-run memory limit; far above what a control tree needs
+
+# The progress properties of a run (with ``progress_every``): "time" is the propagation count.
+PROGRESS_PROPERTIES = {
+    "time": "REAL",
+    "propagations": "INTEGER",
+    "tree size": "INTEGER",
+    "best goal distance": "REAL",
+}
+TIME_UNIT_PARAMETER = "time_unit"  # the experiment parameter naming the time axis' unit
 
 # The run properties appended to OMPL's log, with their OMPL types.
 EXTRA_PROPERTIES = {
@@ -83,7 +101,10 @@ class BenchmarkResult:
     """OMPL's log (augmented, see the module docstring) and one plain dict per run, in the
     log's order (planner by planner, run by run): ``planner``, ``run``, ``seed``, ``solved``
     (goal reached exactly), ``approximate``, ``time_s``, ``tree_size``, ``tree_edges``,
-    ``propagations``, ``validity_checks``, ``exit_time_s`` (NaN when not solved)."""
+    ``propagations``, ``validity_checks``, ``exit_time_s`` (NaN when not solved); with
+    ``progress_every`` also ``progress``: ``(propagations, tree size, best goal distance)``
+    samples in the run's order, and ``best_goal_distance`` at the run's end (inf: no state
+    was checked against the goal)."""
 
     log: str = field(repr=False)
     runs: list[dict]
@@ -95,13 +116,24 @@ class _Counted(ob.Planner):
     work) and, with a ``budget``, stopped once it has made that many propagations in this run
     (or by OMPL's own condition)."""
 
-    def __init__(self, si, inner, counts: list[int], budget: int | None):
+    def __init__(
+        self,
+        si,
+        inner,
+        counts: list[int],
+        budget: int | None,
+        progress_every: int | None = None,
+        best: list[float] | None = None,
+    ):
         super().__init__(si, inner.getName())
         self.inner = inner
         self.counts = counts
         self.budget = budget
         self.spent = [0, 0]
         self.settings: dict[str, str] = {}  # the inner planner's parameters, once set up
+        self.progress_every = progress_every
+        self.best = best if best is not None else [math.inf]  # best goal distance this run
+        self.samples: list[tuple[int, int, float]] = []  # this run's progress
 
     def clear(self) -> None:
         super().clear()
@@ -112,7 +144,10 @@ class _Counted(ob.Planner):
         self.inner.setup()
         self.settings = planner_parameters(self.inner)
         start = list(self.counts)
-        if self.budget is not None:
+        self.samples = []
+        if self.progress_every is not None:
+            ptc = ob.plannerOrTerminationCondition(ptc, self._sampling(start[1]))
+        elif self.budget is not None:
             stop_at = start[1] + self.budget
             spent = ob.PlannerTerminationCondition(lambda: self.counts[1] >= stop_at)
             ptc = ob.plannerOrTerminationCondition(ptc, spent)
@@ -120,6 +155,32 @@ class _Counted(ob.Planner):
             return self.inner.solve(ptc)
         finally:
             self.spent = [self.counts[0] - start[0], self.counts[1] - start[1]]
+            if self.progress_every is not None:
+                self._sample(self.spent[1])
+
+    def _sampling(self, start: int) -> ob.PlannerTerminationCondition:
+        """The budget's condition (if any) that also takes a progress sample each time
+        another ``progress_every`` propagations have been made (OMPL evaluates it between
+        the planner's iterations, so the tree is whole when it is read)."""
+        every = int(self.progress_every or 1)
+        stop_at = None if self.budget is None else start + self.budget
+        due = [start + every]
+
+        def check() -> bool:
+            done = self.counts[1]
+            if done >= due[0]:
+                self._sample(done - start)
+                due[0] = done + every
+            return stop_at is not None and done >= stop_at
+
+        return ob.PlannerTerminationCondition(check)
+
+    def _sample(self, spent: int) -> None:
+        if self.samples and self.samples[-1][0] == spent:
+            return  # one sample per count: (run, time) is the progress table's key
+        data = ob.PlannerData(self.getSpaceInformation())
+        self.inner.getPlannerData(data)
+        self.samples.append((int(spent), int(data.numVertices()), float(self.best[0])))
 
 
 def planner_parameters(planner: ob.Planner) -> dict[str, str]:
@@ -185,6 +246,8 @@ def benchmark_problem(
     settings: PlannerSettings | None = None,
     level_options: Mapping[str, Any] | None = None,
     start_region: tuple[float, float] | None = None,
+    *,
+    progress_every: int | None = None,
 ) -> BenchmarkResult:
     """Benchmark ``planners`` on the problem of reaching the scene's goal from entry
     ``orientation`` at level ``level_name``, ``runs`` runs each: the problem of
@@ -217,7 +280,9 @@ def benchmark_problem(
         count=True,
         start_region=start_region,
     )
-    return benchmark_control_problem(problem, planners, runs, budget, seed, experiment, parameters)
+    return benchmark_control_problem(
+        problem, planners, runs, budget, seed, experiment, parameters, progress_every=progress_every
+    )
 
 
 @one_at_a_time
@@ -229,6 +294,8 @@ def benchmark_control_problem(
     seed: int,
     experiment: str,
     parameters: Mapping[str, float | int | str] | None = None,
+    *,
+    progress_every: int | None = None,
 ) -> BenchmarkResult:
     """Benchmark ``planners`` on an already built ``problem`` (from
     :func:`planners.plan.control_problem` with ``count=True``, changed as the user likes:
@@ -244,7 +311,9 @@ def benchmark_control_problem(
     log's experiment name (Planner Arena's problem: one word, as OMPL's reader keeps only
     the last). ``parameters`` become the experiment's parameters in OMPL's log (REAL for
     floats, INTEGER for ints, STRING otherwise), and so columns of Planner Arena's
-    ``experiments`` table.
+    ``experiments`` table. ``progress_every`` (propagations; needs a budget in propagations)
+    records each run's progress (the module's docstring): Planner Arena's progress plots,
+    over a time axis that counts propagations.
 
     >>> from feeders.design import PRESETS
     >>> from feeders.feeder import build_feeder
@@ -265,6 +334,11 @@ def benchmark_control_problem(
         raise ValueError(
             "problem has no counts of propagations: build it with control_problem(..., count=True)"
         )
+    if progress_every is not None:
+        if budget.propagations is None:
+            raise ValueError("progress_every needs a budget in propagations (the plots' clock)")
+        if not 1 <= int(progress_every) <= 10**9:
+            raise ValueError(f"progress_every = {progress_every!r} is outside the range [1, 1e9]")
     ss, si, level, counts = problem.ss, problem.si, problem.level, problem.counts
     # Compile (or load from cache) the level's kernels before OMPL starts its clock, at the
     # goal's centre (ProblemDefinition.getStartState would hand the start to Python, which
@@ -277,6 +351,7 @@ def benchmark_control_problem(
 
     bench = ot.Benchmark(ss, experiment)
     wrapped: list[_Counted] = []
+    best = [math.inf]  # the best goal distance of the run going on
     for spec in planners:
         inner = _make_planner(spec, si)
         name = inner.getName()
@@ -284,9 +359,12 @@ def benchmark_control_problem(
             raise ValueError(
                 f"two planners named '{name}': give one another name (planner.setName)"
             )
-        wrapped.append(_Counted(si, inner, counts, budget.propagations))
+        wrapped.append(_Counted(si, inner, counts, budget.propagations, progress_every, best))
         bench.addPlanner(wrapped[-1])
-    for key, value in (parameters or {}).items():
+    extra = dict(parameters or {})
+    if progress_every is not None:
+        extra[TIME_UNIT_PARAMETER] = "propagations"
+    for key, value in extra.items():
         _check_property_name(key)
         kind = "INTEGER" if isinstance(value, (int, np.integer)) else "REAL"
         if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
@@ -299,6 +377,7 @@ def benchmark_control_problem(
         run = sum(1 for r in rows if r["planner"] == planner.getName())
         seed_ompl(seed + run)
         problem.goal.rng = np.random.default_rng(seed + run)
+        best[0] = math.inf
 
     def post_run(planner, properties) -> None:
         name = planner.getName()
@@ -312,6 +391,9 @@ def benchmark_control_problem(
             steps = range(path.getControlCount())
             exit_time = float(sum(path.getControlDuration(i) for i in steps))
         vertices, edges = _tree_size(planner, si)
+        progress = {}
+        if progress_every is not None:
+            progress = {"progress": list(planner.samples), "best_goal_distance": best[0]}
         rows.append(
             {
                 "planner": name,
@@ -325,6 +407,7 @@ def benchmark_control_problem(
                 "propagations": planner.spent[1],
                 "validity_checks": planner.spent[0],
                 "exit_time_s": exit_time,
+                **progress,
             }
         )
 
@@ -333,7 +416,14 @@ def benchmark_control_problem(
     request = ot.Request(float(budget.time_s), MEMORY_LIMIT_MB, int(runs))
     request.displayProgress = False
     request.saveConsoleOutput = False  # else an ompl_<host>_<date>.console file per experiment
-    bench.benchmark(request)
+    untracked = problem.goal.distanceGoal
+    if progress_every is not None:
+        problem.goal.distanceGoal = _tracking(untracked, best)
+    try:
+        bench.benchmark(request)
+    finally:
+        if progress_every is not None:
+            del problem.goal.distanceGoal  # the class's own again
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "run.log"
         if not bench.saveResultsToFile(str(path)):
@@ -344,7 +434,28 @@ def benchmark_control_problem(
         [[r for r in rows if r["planner"] == w.getName()] for w in wrapped],
         [w.settings for w in wrapped],
     )
+    if progress_every is not None:
+        log = _propagations_as_time_limit(log, int(budget.propagations or 0))
     return BenchmarkResult(log=log, runs=rows)
+
+
+def _tracking(distance: Callable[[Any], float], best: list[float]) -> Callable[[Any], float]:
+    """``distance`` (the goal's ``distanceGoal``, which OMPL's planners call on every state
+    they add to their tree) that also keeps the smallest value in ``best[0]``."""
+
+    def tracked(state: Any) -> float:
+        d = distance(state)
+        if d < best[0]:
+            best[0] = d
+        return d
+
+    return tracked
+
+
+def _propagations_as_time_limit(log: str, budget: int) -> str:
+    """OMPL's "T seconds per run" line with the propagation budget for T: the time axis of
+    the progress (and Planner Arena's time-limit line) counts propagations."""
+    return re.sub(r"^\S+ seconds per run$", f"{budget} seconds per run", log, count=1, flags=re.M)
 
 
 def _format(value: float | int | bool) -> str:
@@ -353,6 +464,20 @@ def _format(value: float | int | bool) -> str:
     if isinstance(value, float) and not math.isfinite(value):
         return ""  # OMPL's reader stores an empty value as NULL
     return repr(value) if isinstance(value, float) else str(value)
+
+
+def _progress_block(runs: list[dict]) -> list[str]:
+    """The progress properties of ``runs`` in OMPL's log format: their names and types, the
+    run count, then per run its samples, each "v1,v2,...," and ended by ";"."""
+    lines = [f"{len(PROGRESS_PROPERTIES)} progress properties for each run"]
+    lines += [f"{name} {kind}" for name, kind in PROGRESS_PROPERTIES.items()]
+    lines.append(f"{len(runs)} runs")
+    for row in runs:
+        samples = (
+            (float(spent), spent, size, distance) for spent, size, distance in row["progress"]
+        )
+        lines.append("".join(",".join(map(_format, s)) + ",;" for s in samples))
+    return lines
 
 
 def _augment_log(log: str, per_planner: list[list[dict]], parameters: list[dict[str, str]]) -> str:
@@ -406,5 +531,9 @@ def _augment_log(log: str, per_planner: list[list[dict]], parameters: list[dict[
             ]
             out.append("; ".join(values) + "; ")
         i += 1 + n_runs
+        if runs and "progress" in runs[0]:
+            out.extend(_progress_block(runs))
+            if i < len(lines) and lines[i].strip() != ".":
+                raise RuntimeError("OMPL logged progress of its own for a wrapped planner")
         planner += 1
     return "\n".join(out) + "\n"
