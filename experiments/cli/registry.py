@@ -51,6 +51,9 @@ SUBCOMMANDS: tuple[Subcommand, ...] = (
     Subcommand("stress", "experiments.stress.command", "the numerical stress suite of the levels"),
     Subcommand("margins", "experiments.cli.margins",
                "a design's tolerance margins: per parameter, friction and part dimension"),
+    Subcommand("planners", "experiments.cli.planners",
+               "compare OMPL's control planners on the suite's problems at every level "
+               "(performance profiles, Planner Arena's database)"),
     Subcommand("part", "experiments.cli.part",
                "a part's mass, centre of mass, inertia, area and stable resting poses"),
     Subcommand("family", "experiments.cli.family",
