@@ -7,9 +7,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
 from experiments.report_kit.figures import PLAIN_TICKS, empty_plot, plt
 
 COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
+COUNT_TICKS = FuncFormatter(lambda value, _: f"{value:,.0f}")  # 5,000 not 5e+03
 STYLES = ("-", "--", "-.", ":", (0, (5, 1)), (0, (3, 1, 1, 1)), (0, (1, 1)))
 
 
@@ -50,6 +53,9 @@ def level_figure(level: str, data: dict[str, Any], labels: list[str], path: Path
     bars.set_xlabel("runs solved (95% Wilson)")
     bars.set_title(f"{level}: solved fraction", fontsize=10)
     ecdf.set_xscale("log")
+    ecdf.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ecdf.xaxis.set_major_formatter(COUNT_TICKS)
+    ecdf.xaxis.set_minor_formatter(NullFormatter())  # 3x10^3, 4x10^3 ... would overlap
     ecdf.set_ylim(0, 1.02)
     ecdf.set_xlabel("propagations to solve (log)")
     ecdf.set_ylabel("fraction of runs solved")
@@ -69,7 +75,7 @@ def level_figure(level: str, data: dict[str, Any], labels: list[str], path: Path
         prof.text(0.5, 0.5, "no problem solved\nby any planner", ha="center", va="center")
         prof.axis("off")
     if any(data["ecdf"][label]["x"] for label in labels):
-        ecdf.legend(fontsize=8, loc="lower right")
+        ecdf.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

@@ -130,7 +130,9 @@ def html_page(report: dict[str, Any], figures: dict[str, Path]) -> str:
     s = report["suite"]
     body = [
         f"<h1>Planner comparison: {html.escape(s['name'])}</h1>",
-        f"<p>{len(report['problems'])} problems, {s['runs']} runs per planner and problem, "
+        f"<p>{len(report['problems'])} problems (design x level x entry; "
+        f"{sum(1 for p in report['problems'] if p['planned'])} planned), "
+        f"{s['runs']} runs per planner and problem, run r seeded with {s['seed']} + r, "
         "budgets in propagations: "
         + html.escape(", ".join(f"{k} {v}" for k, v in s["budgets"].items()))
         + ".</p>",
