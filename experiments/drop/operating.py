@@ -215,3 +215,39 @@ def screened_operating_point(
         on * then.undecided,
         on * then.mean_trials,
     )
+
+
+def crossing_probability(p: float, settings: ScreenSettings) -> float:
+    """The probability that one entry's walk, its drops succeeding with probability ``p``,
+    reaches the screen test's lower bound within ``max_drops`` drops, its upper bound
+    ignored (exact: the count distribution propagated drop by drop). With ``confirm_step``
+    the screen fails an entry only when the walk of its drops at the confirmation step did
+    so (:func:`experiments.drop.screen.run_sequence`), so this bounds the probability that
+    the screen fails an entry whose p *at the verdict's step* is ``p``, whatever the
+    screen's coarse step does to its drops."""
+    _check(p)
+    from experiments.drop.screen import wald_of
+
+    test = wald_of(settings)
+
+    def status(k: int, n: int) -> str:
+        return FAILS if test.llr(k, n) <= test.lower else "undecided"
+
+    return float(sequential_path(p, range(1, settings.max_drops + 1), status).fails_at.sum())
+
+
+def screen_fails_at_verdict_p(
+    p: float, settings: ScreenSettings, shift: float = 0.0, shifted: int = 1, entries: int = 2
+) -> float:
+    """The probability that the screen, as it runs, fails a design whose ``entries`` each
+    succeed with probability ``p`` at the verdict's step, independently (each entry's
+    drops are its own draws). With ``confirm_step``: at most 1 - (1 - c)^entries, c the
+    :func:`crossing_probability` at ``p`` (whatever the coarse step does). Without: exact
+    when ``shifted`` of the entries succeed with ``p - shift`` at the screen's step (a
+    shift measured on paired draws, docs/verdict.md) and the others with ``p``."""
+    _check(p)
+    if settings.confirm_step is not None:
+        return 1.0 - (1.0 - crossing_probability(p, settings)) ** entries
+    one = screen_operating_point(p, settings, 1).fails
+    low = screen_operating_point(max(0.0, p - shift), settings, 1).fails
+    return 1.0 - (1.0 - low) ** shifted * (1.0 - one) ** (entries - shifted)
