@@ -146,6 +146,14 @@ def add_arguments(bench: argparse.ArgumentParser) -> None:
         "takes default, halton:SEED:INDEX or the family's values",
     )
     agreement.add_argument(
+        "--arbiter",
+        default=None,
+        metavar="SCALES",
+        help="with --family: then drop again in Box2D (pip install box2d), at each of these "
+        "comma-separated scales (e.g. 4,8: the scene x S into Box2D's 0.1-10 m), the drops "
+        "where the engines disagree on success and a control set where they agree",
+    )
+    agreement.add_argument(
         "--pymunk-radius",
         type=float,
         default=None,
@@ -245,6 +253,9 @@ def _agreement(args: argparse.Namespace) -> int:
         raise UsageError(f"--workers = {args.workers} is outside the allowed range [1, 64]")
     if args.family is None and args.pymunk_radius is not None:
         raise UsageError("--pymunk-radius needs --family (the peg feeder's radius is fixed)")
+    if args.family is None and args.arbiter is not None:
+        raise UsageError("--arbiter needs --family")
+    scales = _scales(args.arbiter) if args.arbiter is not None else ()
     family_file = _family_file(args) if args.family is not None else None
     out = _out(args)
     if out is not None:
@@ -258,7 +269,7 @@ def _agreement(args: argparse.Namespace) -> int:
                 "out with --engines"
             )
     if family_file is not None:
-        return _family_agreement(args, family_file, trials, engines, out)
+        return _family_agreement(args, family_file, trials, engines, out, scales)
     from experiments.bench.agreement.designs import default_designs, named_design
     from experiments.bench.agreement.report import markdown, write_outputs, written_data
     from experiments.bench.agreement.suite import AgreementSettings, agreement_data
@@ -315,8 +326,34 @@ def _family_file(args: argparse.Namespace) -> str:
     return str(path)
 
 
+BOX2D_SCALE_RANGE = (0.1, 100.0)
+
+
+def _scales(text: str) -> tuple[float, ...]:
+    """``--arbiter``'s scales, checked, and Box2D importable: UsageError (one line) otherwise."""
+    from experiments.bench.peers import box2d_engine
+
+    try:
+        scales = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        scales = ()
+    low, high = BOX2D_SCALE_RANGE
+    if not scales or not all(low <= v <= high for v in scales):  # also refuses nan
+        raise UsageError(
+            f"--arbiter = {text!r}: comma-separated scales, each in [{low:g}, {high:g}]"
+        )
+    if not box2d_engine.available():
+        raise UsageError("--arbiter: Box2D is not installed (pip install box2d)")
+    return scales
+
+
 def _family_agreement(
-    args: argparse.Namespace, family_file: str, trials: int, engines: tuple, out: Path | None
+    args: argparse.Namespace,
+    family_file: str,
+    trials: int,
+    engines: tuple,
+    out: Path | None,
+    scales: tuple[float, ...] = (),
 ) -> int:
     """``--agreement --family``: the family verdict's drops in every engine (issue 35)."""
     from experiments.bench.agreement.family import (
@@ -353,6 +390,15 @@ def _family_agreement(
         args.workers,
         progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
     )
+    if scales:
+        from experiments.bench.agreement.arbiter import arbitrate
+
+        data["arbiter"] = arbitrate(
+            data,
+            scales,
+            args.peer_step,
+            progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
+        )
     written = written_data(data)
     paths = write_outputs(data, out) if out is not None else []
     if args.json:

@@ -29,7 +29,7 @@ from pathlib import Path
 from experiments.bench.agreement.drops import Peer, partfeeder_drop, peer_drop
 from experiments.bench.agreement.suite import AgreementSettings, DropRow, _row
 from experiments.drop.family_verdict import entry_names, made_devices
-from experiments.drop.perturbations import draw
+from experiments.drop.perturbations import Perturbations, draw
 from experiments.drop.verdict import UNBUILDABLE, entry_state
 from experiments.executors.local import map_jobs
 from feeders.device_family import DeviceFamily, load_family
@@ -103,24 +103,18 @@ def family_peer(engine: str, scene: Scene, h: float, pymunk_radius: float) -> Pe
     return PymunkCompoundSimulator(scene, h, radius=pymunk_radius)
 
 
-def run_family_trial(
-    family: DeviceFamily, design: FamilyDesign, index: int, suite: FamilySuite
-) -> list[DropRow]:
-    """Trial ``index`` of a family design in every engine: the verdict's draw, device and
-    starts (:mod:`experiments.drop.family_verdict`), rows per entry and engine."""
-    settings = suite.settings
+def trial_scene(
+    family: DeviceFamily, design: FamilyDesign, index: int, settings: AgreementSettings
+) -> tuple[Scene, DynamicLevel, dict[str, tuple[float, ...]]] | None:
+    """Trial ``index``'s made device (restitution 0), its dynamic level and per entry the
+    start, as the family verdict makes them; None when the made device cannot be built."""
     entries = entry_names(family)
     n = len(family.vector_names)
     perturbation = draw(settings.perturbations, settings.seed, index, len(entries), n)
     try:
         scene = made_devices(family, design.values)(perturbation)
     except DegenerateDesign:
-        return [
-            DropRow(design.name, index, o, e, (), math.nan, False, UNBUILDABLE, "unbuilt",
-                    math.nan, (), math.nan, math.nan, math.nan, 0, math.nan, 0.0)
-            for o in entries
-            for e in settings.engines
-        ]  # fmt: skip
+        return None
     scene = dataclasses.replace(scene, restitution=0.0)
     level = DynamicLevel(scene, step=settings.partfeeder_step)
     starts = {
@@ -129,6 +123,25 @@ def run_family_trial(
         )
         for k, o in enumerate(entries)
     }
+    return scene, level, starts
+
+
+def run_family_trial(
+    family: DeviceFamily, design: FamilyDesign, index: int, suite: FamilySuite
+) -> list[DropRow]:
+    """Trial ``index`` of a family design in every engine: the verdict's draw, device and
+    starts (:mod:`experiments.drop.family_verdict`), rows per entry and engine."""
+    settings = suite.settings
+    entries = entry_names(family)
+    made = trial_scene(family, design, index, settings)
+    if made is None:
+        return [
+            DropRow(design.name, index, o, e, (), math.nan, False, UNBUILDABLE, "unbuilt",
+                    math.nan, (), math.nan, math.nan, math.nan, 0, math.nan, 0.0)
+            for o in entries
+            for e in settings.engines
+        ]  # fmt: skip
+    scene, level, starts = made
     rows = []
     for engine in settings.engines:
         peer = None
@@ -246,3 +259,12 @@ def default_family_designs(family: DeviceFamily) -> tuple[str, ...]:
     """The family's measured set (:data:`DESIGNS`), else its default and its first four
     Halton designs (seed 0)."""
     return DESIGNS.get(family.name, ("default", *(f"halton:0:{i}" for i in range(4))))
+
+
+def settings_of(data: dict) -> AgreementSettings:
+    """The suite's settings as ``family_agreement_data`` stored them (agreement.json)."""
+    s = dict(data["settings"])
+    s.pop("pymunk_radius", None)
+    s["perturbations"] = Perturbations(**s["perturbations"])
+    s["engines"] = tuple(s["engines"])
+    return AgreementSettings(**s)

@@ -115,6 +115,10 @@ def markdown(data: dict) -> str:
             f"| {engine} | {c['h']:g} | {c['drops']} | {c['wall_s']:.1f} | "
             f"{c['mean_wall_s']:.3f} | {c['mean_T_s']:.2f} |"
         )
+    if data.get("arbiter"):
+        from experiments.bench.agreement.arbiter import arbiter_markdown
+
+        lines += ["", arbiter_markdown(data["arbiter"]).rstrip("\n")]
     return "\n".join(lines) + "\n"
 
 
