@@ -16,18 +16,36 @@ from experiments.stress.case import LEVEL_NAMES
 MAX_CASES = 10_000_000  # also where the composite-part cases' indices begin (generate.py)
 MAX_WORKERS = 256
 MAX_SEED = 2**32 - 1  # the seeds numpy draws from, as the verdict's and the sweeps' seeds
+MIN_STEP, MAX_STEP = 1e-6, 0.1  # s: the range of a case file's h (experiments.stress.case)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """The options of ``partfeeder stress``."""
     parser.add_argument("--seed", type=int, default=0, help="seed of the cases (default 0)")
-    parser.add_argument("--cases", type=int, default=300, help="number of cases (default 300)")
+    parser.add_argument(
+        "--cases", type=int, default=300, help="number of peg cases (default 300; 0: none)"
+    )
     parser.add_argument(
         "--composite",
         type=int,
         default=None,
         help="composite-part cases run besides the peg's --cases (a scaled cup, a non-convex "
         "outline, a plate with discs; default a third of --cases; 0: the peg's alone)",
+    )
+    parser.add_argument(
+        "--ramp-foot",
+        type=int,
+        default=None,
+        help="ramp-foot cases run besides the others (issue 35: a corner sliding at 2-20 "
+        "length/s down a 40-75 degree ramp, or at 14-17 down a wall it is slightly inside, "
+        "into the foot where it meets the floor; default a thirtieth of --cases; 0: none)",
+    )
+    parser.add_argument(
+        "--step",
+        type=float,
+        default=None,
+        help="run every case at this step h (s, 1e-6 to 0.1) instead of its own, with the "
+        "same number of steps (default: each case's drawn h)",
     )
     parser.add_argument(
         "--levels",
@@ -64,8 +82,16 @@ def _levels(text: str) -> tuple[str, ...]:
 
 
 def _check(args: argparse.Namespace) -> tuple[str, ...]:
-    if not 1 <= args.cases <= MAX_CASES:
-        raise ValueError(f"--cases = {args.cases} is outside the allowed range [1, {MAX_CASES}]")
+    if not 0 <= args.cases <= MAX_CASES:
+        raise ValueError(f"--cases = {args.cases} is outside the allowed range [0, {MAX_CASES}]")
+    if args.ramp_foot is not None and not 0 <= args.ramp_foot <= MAX_CASES:
+        raise ValueError(
+            f"--ramp-foot = {args.ramp_foot} is outside the allowed range [0, {MAX_CASES}]"
+        )
+    if args.step is not None and not MIN_STEP <= args.step <= MAX_STEP:
+        raise ValueError(
+            f"--step = {args.step} is outside the allowed range [{MIN_STEP}, {MAX_STEP}]"
+        )
     if not 1 <= args.workers <= MAX_WORKERS:
         raise ValueError(
             f"--workers = {args.workers} is outside the allowed range [1, {MAX_WORKERS}]"
@@ -76,10 +102,10 @@ def _check(args: argparse.Namespace) -> tuple[str, ...]:
         raise ValueError(
             f"--composite = {args.composite} is outside the allowed range [0, {MAX_CASES}]"
         )
-    if args.case is not None and not 0 <= args.case < 2 * MAX_CASES:
+    if args.case is not None and not 0 <= args.case < 3 * MAX_CASES:
         raise ValueError(
-            f"--case = {args.case} is outside the allowed range [0, {2 * MAX_CASES - 1}] "
-            f"(from {MAX_CASES}: the composite-part cases)"
+            f"--case = {args.case} is outside the allowed range [0, {3 * MAX_CASES - 1}] "
+            f"(from {MAX_CASES}: the composite-part cases; from {2 * MAX_CASES}: ramp-foot)"
         )
     if args.case is not None and args.replay is not None:
         raise ValueError("--case and --replay: give one of them")
@@ -106,15 +132,25 @@ def run(args: argparse.Namespace) -> int:
     from experiments.stress.report import summary, table, write_case
 
     composite = args.cases // 3 if args.composite is None else args.composite
-    update, close = (None, lambda: None) if args.quiet else progress_bar(args.cases + composite)
+    ramp = args.cases // 30 if args.ramp_foot is None else args.ramp_foot
+    total = args.cases + composite + ramp
+    if total == 0:
+        print(
+            "partfeeder stress: error: no cases (--cases, --composite, --ramp-foot)",
+            file=sys.stderr,
+        )
+        return 2
+    update, close = (None, lambda: None) if args.quiet else progress_bar(total)
     try:
-        results = run_cases(args.seed, args.cases, levels, args.workers, update, composite)
+        results = run_cases(
+            args.seed, args.cases, levels, args.workers, update, composite, ramp, args.step
+        )
     finally:
         close()
     data = summary(results, args.seed)
     if args.out is not None:
         data["files"] = [
-            str(write_case(args.out, generate_case(args.seed, r["index"], levels), r))
+            str(write_case(args.out, generate_case(args.seed, r["index"], levels, args.step), r))
             for r, _ in results
             if r["hard"] and not str(r["error"]).startswith("generate:")
         ]  # a case the generator could not make has no file: its record names the fault
@@ -129,7 +165,7 @@ def _one_case(args: argparse.Namespace, levels: tuple[str, ...]) -> int:
     from experiments.stress.report import write_case
     from experiments.stress.runner import record_of
 
-    case = generate_case(args.seed, args.case, levels)
+    case = generate_case(args.seed, args.case, levels, args.step)
     record = record_of(case)
     path = None if args.out is None else write_case(args.out, case, record)
     if args.json:

@@ -31,10 +31,18 @@ walls or rims), ``wedged`` spans the chute at the yaw where the part's width acr
 between the part's narrowest and widest widths), and a feeder's ``entry`` and the issue's
 drop (a peg's) are not drawn. ``partfeeder stress --cases N`` runs ``--composite M`` of them
 besides the N peg cases (default N / 3, a quarter of the run).
+
+Ramp-foot cases (issue 35) are a third stream, case ``RAMP_FOOT_BASE + j``
+(:func:`ramp_foot_case`, ``--ramp-foot M``, default N / 30): a peg's corner sliding fast down a
+40-75 degree ramp, or down an upright wall it is already slightly inside, into the concave
+corner where the face meets the floor, the geometry where a floor contact hid behind a seam.
+``generate_case(..., step=h)`` runs any case at another step with the same number of steps and
+every other draw unchanged (``--step``).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
@@ -59,7 +67,14 @@ from experiments.stress.placement import (
     wedge_angle,
     wedge_yaw,
 )
-from experiments.stress.scenes import BOUNDS, FREE_FORM, ISSUE_POST, Obstacles, scale_chute
+from experiments.stress.scenes import (
+    BOUNDS,
+    FREE_FORM,
+    ISSUE_POST,
+    Obstacles,
+    ramp_foot,
+    scale_chute,
+)
 from feeders.feeder import ORIENTATIONS
 from feeders.halton import halton_designs
 from feeders.part import Peg
@@ -90,9 +105,25 @@ COMPOSITE_BASE = 10_000_000
 below it): case ``COMPOSITE_BASE + j`` is composite case ``j``."""
 
 
+RAMP_FOOT_BASE = 20_000_000
+"""Case indices from here on are ramp-foot cases (issue 35): case ``RAMP_FOOT_BASE + j`` is
+ramp-foot case ``j`` (:func:`ramp_foot_case`)."""
+RAMP_FOOT_PLACEMENTS = ("ramp", "wall")
+RAMP_SPEED = (2.0, 20.0)  # length/s down a ramp (issue 35)
+WALL_SPEED = (14.0, 17.0)  # length/s down a wall the corner is already inside
+FOOT_HEIGHT = (0.002, 0.05)  # the corner's height above the foot (length)
+WALL_INSIDE = (1e-7, 1e-6)  # how far the corner starts inside the wall (length)
+RAMP_FOOT_STEPS = 4000  # most steps of a ramp-foot run: it needs only to reach the foot
+
+
 def composite_index(j: int) -> int:
     """The case index of composite case ``j``."""
     return COMPOSITE_BASE + j
+
+
+def ramp_foot_index(j: int) -> int:
+    """The case index of ramp-foot case ``j``."""
+    return RAMP_FOOT_BASE + j
 
 
 def _log_uniform(rng: np.random.Generator, low: float, high: float) -> float:
@@ -257,9 +288,22 @@ def _velocity(rng, level: str, toward: np.ndarray, mass: float, size: float, pla
     return list(control), control, inputs
 
 
-def generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
-    """Case ``index`` of ``seed`` (see the module docstring): a peg case, or a composite-part
-    case from :data:`COMPOSITE_BASE` on."""
+def generate_case(
+    seed: int, index: int, levels: tuple[str, ...], step: float | None = None
+) -> Case:
+    """Case ``index`` of ``seed`` (see the module docstring): a peg case, a composite-part
+    case from :data:`COMPOSITE_BASE` on, a ramp-foot case from :data:`RAMP_FOOT_BASE` on.
+    ``step``: run it at that h instead of its own (the same number of steps; every other draw
+    unchanged)."""
+    if index >= RAMP_FOOT_BASE:
+        return ramp_foot_case(seed, index - RAMP_FOOT_BASE, levels, step)
+    case = _generate_case(seed, index, levels)
+    if step is None:
+        return case
+    return dataclasses.replace(case, h=float(step), duration=case.duration / case.h * step)
+
+
+def _generate_case(seed: int, index: int, levels: tuple[str, ...]) -> Case:
     rng = np.random.default_rng([seed, index])
     composite = index >= COMPOSITE_BASE
     deal = index - COMPOSITE_BASE if composite else index
@@ -395,3 +439,105 @@ def _goal_around(pose, bounds) -> dict[str, Any]:
     x0 = min(max(pose[0] - 0.1, bounds[0]), bounds[1] - 0.2)
     y0 = min(max(pose[1] - 0.1, bounds[2]), bounds[3] - 0.2)
     return {"x": [x0, x0 + 0.2], "y": [y0, y0 + 0.2], "yaw": 0.0, "yaw_tol": math.pi}
+
+
+def ramp_foot_case(seed: int, j: int, levels: tuple[str, ...], step: float | None = None) -> Case:
+    """Ramp-foot case ``j`` of ``seed`` (issue 35), at level ``j mod L``: a peg's corner on a
+    40-75 degree ramp standing on the floor (placement ``ramp``: touching it or up to 1e-3
+    above it, sliding down at 2-20 length/s) or on an upright wall it is already 1e-7 to 1e-6
+    inside (``wall``: 14-17 length/s), 0.002-0.05 above the foot, where the face meets the
+    floor in a concave corner; the part's other corners are at least half as high, so the
+    corner reaches the foot, and the floor, in the run, first or nearly (on a wall the part
+    stands along it, tilted by up to 1e-2 rad). The placements alternate every L cases.
+    Gravity is the only input; h is drawn as the other cases' (or ``step``) and the run lasts
+    three times the time to the foot (at least 50 steps, at most :data:`RAMP_FOOT_STEPS`)."""
+    rng = np.random.default_rng([seed, RAMP_FOOT_BASE + j])
+    level = levels[j % len(levels)]
+    placement = RAMP_FOOT_PLACEMENTS[(j // len(levels)) % len(RAMP_FOOT_PLACEMENTS)]
+    wall = placement == "wall"
+    part = _part(rng, "ramp_foot")
+    shape = PartShape.of(_peg(part))
+    friction = 0.0 if rng.uniform() < 0.2 else float(rng.uniform(0.0, 1.0))
+    restitution = float(rng.uniform(0.0, 1.0))
+    h = _log_uniform(rng, 1e-5, 1e-1)
+    h = h if step is None else float(step)  # drawn either way: the later draws stay the same
+    for _ in range(_TRIES):
+        draw = ramp_foot(rng, wall)
+        height = _log_uniform(rng, *FOOT_HEIGHT)
+        along = height / -draw.down[1]  # from the foot up the face
+        point = np.array([draw.foot, 0.0]) - along * draw.down
+        target = -_log_uniform(rng, *WALL_INSIDE) if wall else _target(rng, "flush")
+        pose = _leading_corner_pose(rng, draw, shape, point, height, target)
+        if pose is not None:
+            break
+    else:
+        raise RuntimeError(f"ramp-foot case {j} of seed {seed}: no pose with a leading corner")
+    speed = float(rng.uniform(*(WALL_SPEED if wall else RAMP_SPEED)))
+    velocity = speed * draw.down
+    reach = along / speed
+    duration = h * min(max(math.ceil(3.0 * reach / h), 50), RAMP_FOOT_STEPS)
+    mass = part["mass"]
+    if level == "dynamic":
+        inputs = {"max_force": min(1e3, 2.0 * mass * 9.81), "max_torque": min(1e3, mass * 9.81)}
+        control = (0.0, 0.0, 0.0)
+    else:
+        inputs = {"max_speed": speed, "max_turn": 1.0}
+        control = (float(velocity[0]), float(velocity[1]), 0.0)
+    doc = {
+        "name": f"stress {seed}-{RAMP_FOOT_BASE + j} ramp_foot",
+        "obstacles": draw.obstacles.document(),
+        "bounds": list(BOUNDS),
+        "starts": {"case": list(pose)},
+        "goal": _goal_around(pose, BOUNDS),
+        "part": part,
+        "friction": friction,
+        "restitution": restitution,
+        "inputs": inputs,
+    }
+    inertia = _peg(part).inertia
+    if rng.uniform() < 0.5:
+        inertia *= _log_uniform(rng, 0.1, 10.0)
+    state = pose if level == "geometric" else (*pose, float(velocity[0]), float(velocity[1]), 0.0)
+    return Case(
+        seed=seed,
+        index=RAMP_FOOT_BASE + j,
+        level=level,
+        family="ramp_foot",
+        placement=placement,
+        scene=doc,
+        state=tuple(float(v) for v in state),
+        control=control,
+        h=float(h),
+        duration=float(duration),
+        mass=float(mass),
+        inertia=float(inertia),
+        friction=friction,
+    )
+
+
+def _leading_corner_pose(rng, draw, shape: PartShape, point, height: float, target: float):
+    """A pose (x, y, yaw) whose corner nearest the face is at ``point`` (``height`` above the
+    floor), ``target`` from the face's piece along its normal (a gap > 0 or an overlap < 0),
+    clear of the floor, every other corner at least half as high: any yaw on a ramp; on a
+    wall a side along it, tilted by 1e-6 to 1e-2 rad (a rectangle's corner is the nearest to
+    an upright wall only so); None after a few failed yaws."""
+    floor = shapely.Polygon(draw.obstacles.polygons[0])
+    solid = Solid.of_union(union_of([draw.obstacles.polygons[1]], []))  # the face's piece
+    wall = abs(draw.normal[1]) < 1e-9
+    for _ in range(_TRIES):
+        if wall:
+            tilt = _log_uniform(rng, 1e-6, 1e-2) * (1.0 if rng.uniform() < 0.5 else -1.0)
+            yaw = flush_yaw(draw.normal, int(rng.integers(4))) + tilt
+        else:
+            yaw = float(rng.uniform(-math.pi, math.pi))
+        start = touching_pose(shape, point, draw.normal, yaw)
+        corners = placed_points(shape.outline, np.array([start]))[0]
+        nearest = int(np.argmin(corners @ draw.normal))
+        if np.delete(corners[:, 1], nearest).min() < 0.5 * height:
+            continue
+        pose = slide_to(solid, shape, start, draw.normal, target)
+        if pose is None or not in_bounds(pose, BOUNDS):
+            continue
+        if shape.placed(np.array([pose]))[0].distance(floor) > 0.0:
+            return (float(pose[0]), float(pose[1]), wrap_angle(float(pose[2])))
+    return None

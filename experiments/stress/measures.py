@@ -270,16 +270,119 @@ def wrench_work(states: np.ndarray, wrench: tuple[float, float, float]) -> np.nd
     return wrench[0] * d[:, 0] + wrench[1] * d[:, 1] + wrench[2] * d[:, 2]
 
 
+CONTACT_SLACK = 1e-5
+"""Relative slack (of the part's extent) on the reach of a step: the union's discs are
+inscribed polygons, so a distance read on them is up to 5e-6 r too long."""
+
+
+def obstacle_corners(solid: Solid, discs: np.ndarray) -> np.ndarray:
+    """The solid's boundary vertices that are corners, not points of a disc's inscribed
+    polygon (:data:`CIRCLE_SEGMENTS`): those within 5e-6 r of a disc's circle are the disc's,
+    which :func:`linearisation_errors` treats as the disc. Shape (M, 2)."""
+    corners = solid.vertices
+    for cx, cy, r in np.asarray(discs, dtype=float).reshape(-1, 3):
+        off = np.abs(np.hypot(corners[:, 0] - cx, corners[:, 1] - cy) - r)
+        corners = corners[off > 5e-6 * r + 1e-9]
+    return corners
+
+
 def linearisation_errors(
-    states: np.ndarray, radius: float, disc_radius: float = np.inf
+    states: np.ndarray, solid: Solid, part: Part | PartShape, discs: np.ndarray
 ) -> np.ndarray:
-    """Per step, how much deeper than its linearised gap a point of the part may end (length):
-    R dtheta^2 / 2 for the turn (a point at R from the centre of mass leaves its tangent line by
-    at most that) plus d^2 / (2 r) for a slide of d (the largest point displacement) along a
-    disc of radius r (the smallest disc of the scene; inf without discs). Shape (S - 1,)."""
+    """Per step, how much deeper than its linearised gaps the part may end (length), from the
+    contacts it can have in that step. Shape (S - 1,).
+
+    Eq. 7 keeps every contact's gap psi(q) linearised at the step's start non-negative:
+    psi(q0) + J dq >= 0, dq = (dx, dtheta) the step (pose corrections included). The true gap
+    at q0 + dq differs from that by the gap function's second-order part, which depends on the
+    kind of feature pair (unit normals turn by at most |dtheta|; |e^{i a} - 1 - i a| <= a^2/2):
+
+    - a point of the part at b (body frame) against an obstacle face, vertex or disc: the gap
+      is a convex function of the point's position (a plane's is linear, a vertex's or a
+      disc's, |p - c| - r, convex), so it is at least its linearisation in p, and p moves by
+      J dq plus at most |b| dtheta^2 / 2 (the arc against its tangent). Error |b| dtheta^2/2.
+      A disc of the part (its centre at b) against any obstacle feature: the same, with its
+      centre's |b|. A disc the point slides along does not add: it curves away from the point.
+    - an obstacle vertex v, or an obstacle disc of centre c and radius r, against a face of
+      the part: the gap n(theta) . (c - x) - d - r has the face's normal turning with the
+      part, so the error is (n1 - n0 - n0' dtheta) . (c - x0) - (n1 - n0) . dx: at most
+      |c - x0| dtheta^2 / 2 + |dx| |dtheta|. The lever |c - x0| reaches past the contact
+      point by the disc's radius (|c - x0| <= |p - x0| + r; a vertex's r is 0).
+
+    The step's contacts are the feature pairs within its reach, the furthest any point of the
+    part moves in it (|dx| + R |dtheta|, R the part's bounding radius): only those can close.
+    A part vertex or disc that far from the solid counts with its lever |b|; an obstacle
+    corner (:func:`obstacle_corners`) or disc that far from the part with |c - x0| and the
+    cross term. The step's error is the largest of these bounds over them, each taken as the
+    norm of its residual vector (|b| |e^{i dtheta} - 1 - i dtheta| for a part point,
+    :func:`_face_residual` for an obstacle point: the normal is not known, so its worst
+    direction); 0 when nothing is within reach or the part does not turn (a translation keeps
+    every flat gap linear, and the convex ones above it).
+
+    Flat contacts therefore allow only the turn; a disc's radius enters only through its
+    centre's lever, never as d^2 / (2 r) of the slide (the rule of issue 11, which took the
+    smallest disc of the scene whether the part touched it or not, and grew without bound as
+    that disc shrank: issue 35)."""
+    shape = PartShape.of(part)
+    discs = np.asarray(discs, dtype=float).reshape(-1, 3)
+    states = np.asarray(states, dtype=float)
+    errors = np.zeros(max(len(states) - 1, 0))
+    if len(states) < 2 or solid.union.is_empty:
+        return errors
     turn = np.abs(np.remainder(np.diff(states[:, 2]) + np.pi, 2.0 * np.pi) - np.pi)
-    slide = np.hypot(*np.diff(states[:, :2], axis=0).T) + radius * turn
-    return radius * turn**2 / 2.0 + slide**2 / (2.0 * disc_radius)
+    move = np.hypot(*np.diff(states[:, :2], axis=0).T)
+    points = np.vstack([*shape.polygons, shape.discs[:, :2]])  # the part's vertices, disc centres
+    radii = np.concatenate([np.zeros(len(points) - len(shape.discs)), shape.discs[:, 2]])
+    levers = np.hypot(points[:, 0], points[:, 1])
+    bounding = float(np.max(levers + radii))
+    reach = move + bounding * turn + CONTACT_SLACK * max(bounding, 1.0)
+    steps = np.nonzero(turn > 0.0)[0]
+    if len(steps) == 0:
+        return errors
+    starts = states[steps]
+    parts = shape.placed(starts)
+    near = shapely.distance(parts, solid.union) <= reach[steps]
+    steps, starts, parts = steps[near], starts[near], parts[near]
+    if len(steps) == 0:
+        return errors
+    placed = placed_points(points, starts)  # (K, n, 2)
+    gaps = shapely.distance(solid.union, shapely.points(placed.reshape(-1, 2))).reshape(
+        len(steps), -1
+    )
+    touching = gaps - radii[None, :] <= reach[steps][:, None]
+    part_lever = np.max(np.where(touching, levers[None, :], 0.0), axis=1)
+    corners = obstacle_corners(solid, discs)
+    centres = np.vstack([corners, discs[:, :2]])
+    sizes = np.concatenate([np.zeros(len(corners)), discs[:, 2]])
+    a = turn[steps]
+    arc = np.hypot(1.0 - np.cos(a), a - np.sin(a))  # |e^{ia} - 1 - ia| <= a^2 / 2
+    errors[steps] = part_lever * arc
+    shift = np.diff(states[:, :2], axis=0)[steps]
+    signed = np.remainder(np.diff(states[:, 2]) + np.pi, 2.0 * np.pi)[steps] - np.pi
+    for k in range(len(steps)):
+        u = centres - starts[k, :2]
+        lever = np.hypot(u[:, 0], u[:, 1])
+        candidate = np.nonzero(lever - sizes <= bounding + reach[steps[k]])[0]
+        if len(candidate) == 0:
+            continue
+        gap = shapely.distance(parts[k], shapely.points(centres[candidate])) - sizes[candidate]
+        within = candidate[gap <= reach[steps[k]]]
+        if len(within):
+            residual = _face_residual(u[within], shift[k], float(signed[k]))
+            errors[steps[k]] = max(errors[steps[k]], float(residual.max()))
+    return errors
+
+
+def _face_residual(u: np.ndarray, shift: np.ndarray, turn: float) -> np.ndarray:
+    """|R(-a) (u - dx) - u + dx + a J u| for obstacle points at ``u (N, 2)`` from the start's
+    centre of mass, a step ``shift`` = dx and a signed ``turn`` = a (J: a quarter turn): the
+    most a part face's gap to them leaves its linearisation (:func:`linearisation_errors`),
+    at most |u| a^2 / 2 + |dx| |a|."""
+    c, s = np.cos(turn), np.sin(turn)
+    w = u - shift
+    back = np.column_stack([c * w[:, 0] + s * w[:, 1], -s * w[:, 0] + c * w[:, 1]])
+    e = back - u + shift + turn * np.column_stack([-u[:, 1], u[:, 0]])
+    return np.hypot(e[:, 0], e[:, 1])
 
 
 def pose_corrections(states: np.ndarray, h: float) -> np.ndarray:

@@ -12,19 +12,20 @@ from typing import Any
 
 from experiments.executors.local import map_jobs
 from experiments.stress.case import LEVEL_NAMES
-from experiments.stress.generate import composite_index, generate_case
+from experiments.stress.generate import composite_index, generate_case, ramp_foot_index
 from experiments.stress.runner import record_of
 
 Result = tuple[dict[str, Any], float]
 CHUNK = 16  # cases per task: few round trips, a smooth progress bar
 
 
-def run_one(seed: int, levels: tuple[str, ...], index: int) -> Result:
-    """Generate and run case ``index`` of ``seed``: its record and wall time (s, both). A case
-    that cannot be generated is recorded as an exception (a fault of the generator)."""
+def run_one(seed: int, levels: tuple[str, ...], index: int, step: float | None = None) -> Result:
+    """Generate and run case ``index`` of ``seed`` (at h = ``step`` if given): its record and
+    wall time (s, both). A case that cannot be generated is recorded as an exception (a fault
+    of the generator)."""
     start = time.perf_counter()
     try:
-        case = generate_case(seed, index, levels)
+        case = generate_case(seed, index, levels, step)
     except Exception as exc:
         level = levels[index % len(levels)]
         record = {
@@ -33,9 +34,11 @@ def run_one(seed: int, levels: tuple[str, ...], index: int) -> Result:
             "level": level,
             "family": "?",
             "placement": "?",
-            "h": 1.0,
+            "h": 1.0 if step is None else step,
             "max_depth": 0.0,
             "depth_allowed": 0.0,
+            "step_error": 0.0,
+            "part_size": 0.0,
             "energy_gain": 0.0,
             "energy_allowed": 0.0,
             "crossed_step": None,
@@ -53,9 +56,11 @@ def warm_up(levels: tuple[str, ...]) -> None:
         record_of(generate_case(0, LEVEL_NAMES.index(level), LEVEL_NAMES))
 
 
-def run_chunk(seed: int, levels: tuple[str, ...], indices: Sequence[int]) -> list[Result]:
+def run_chunk(
+    seed: int, levels: tuple[str, ...], step: float | None, indices: Sequence[int]
+) -> list[Result]:
     """Generate and run the cases ``indices`` of ``seed`` (a worker's task)."""
-    return [run_one(seed, levels, i) for i in indices]
+    return [run_one(seed, levels, i, step) for i in indices]
 
 
 def run_cases(
@@ -65,14 +70,19 @@ def run_cases(
     workers: int,
     progress: Callable[[int], None] | None = None,
     n_composite: int = 0,
+    n_ramp_foot: int = 0,
+    step: float | None = None,
 ) -> list[Result]:
-    """``(record, seconds)`` of cases 0 .. n_cases - 1 of ``seed`` and of its composite-part
-    cases 0 .. n_composite - 1 (:func:`experiments.stress.generate.composite_index`), in index
-    order; ``progress(k)`` is called as each batch of k cases finishes."""
+    """``(record, seconds)`` of cases 0 .. n_cases - 1 of ``seed``, of its composite-part
+    cases 0 .. n_composite - 1 (:func:`experiments.stress.generate.composite_index`) and of its
+    ramp-foot cases 0 .. n_ramp_foot - 1 (:func:`experiments.stress.generate.ramp_foot_index`),
+    in index order, each at h = ``step`` if given; ``progress(k)`` is called as each batch of
+    k cases finishes."""
     indices = list(range(n_cases)) + [composite_index(j) for j in range(n_composite)]
+    indices += [ramp_foot_index(j) for j in range(n_ramp_foot)]
     chunks = [indices[i : i + CHUNK] for i in range(0, len(indices), CHUNK)]
     results = map_jobs(
-        functools.partial(run_chunk, seed, levels),
+        functools.partial(run_chunk, seed, levels, step),
         chunks,
         workers,
         on_result=None if progress is None else lambda k, _records: progress(len(chunks[k])),

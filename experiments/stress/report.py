@@ -10,11 +10,12 @@ from typing import Any
 
 import yaml
 
-from experiments.stress.bounds import HARD, SOFT
+from experiments.stress.bounds import HARD, SOFT, TRUSTED_STEP, VACUOUS_FRACTION, vacuous
 from experiments.stress.case import Case, CaseError
 from feeders.fields import read_yaml
 
 WORST = 5  # worst cases shown per measure
+LISTED = 10  # vacuous allowances listed per band of h in the text summary
 
 
 def _ratio(record: dict, value: str, allowed: str) -> float:
@@ -54,10 +55,40 @@ def summary(results: list[tuple[dict[str, Any], float]], seed: int) -> dict[str,
         },
         "worst": {k: [_brief(r) for r in v] for k, v in worst.items()},
         "failing": [_brief(r) for r in records if r["hard"]],
+        "families": dict(sorted(Counter(r["family"].split("+")[0] for r in records).items())),
     }
+    data["bands"] = _bands(records)
     if any("+" in r["family"] for r in records):
         data["parts"] = _by_part(records)
     return data
+
+
+def _band(record: dict[str, Any]) -> str:
+    return f"h<={TRUSTED_STEP:g}" if record["h"] <= TRUSTED_STEP else f"h>{TRUSTED_STEP:g}"
+
+
+def _bands(records: list[dict[str, Any]]) -> dict[str, Any]:
+    """Per band of h (up to :data:`TRUSTED_STEP` and above), the dynamic cases, their hard
+    failures, and the cases whose linearisation allowance is vacuous (above
+    :data:`VACUOUS_FRACTION` of the part's size, :func:`experiments.stress.bounds.vacuous`):
+    how many, how many of those went deeper than the fixed tolerance (their pass rests on the
+    allowance), and each one's index, h, allowance, part size and depth."""
+    bands: dict[str, Any] = {}
+    for r in records:
+        if r["level"] != "dynamic":
+            continue
+        row = bands.setdefault(
+            _band(r), {"cases": 0, "hard": 0, "vacuous": 0, "vacuous_deeper": 0, "list": []}
+        )
+        row["cases"] += 1
+        row["hard"] += bool(r["hard"])
+        if vacuous(r):
+            row["vacuous"] += 1
+            row["vacuous_deeper"] += r["max_depth"] > r["depth_allowed"] - r["step_error"]
+            row["list"].append(
+                {k: r[k] for k in ("index", "h", "step_error", "part_size", "max_depth", "hard")}
+            )
+    return {"fraction": VACUOUS_FRACTION, **dict(sorted(bands.items()))}
 
 
 def _by_part(records: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
@@ -116,6 +147,7 @@ def table(data: dict[str, Any]) -> str:
                 for level, row in rows.items()
             )
         )
+    lines += _band_lines(data.get("bands", {}))
     for level, decades in data["hard_by_h"].items():
         lines.append(
             f"hard failures of {level} by h: "
@@ -136,6 +168,31 @@ def table(data: dict[str, Any]) -> str:
                 + (f", {r['error']}" if r["error"] else "")
             )
     return "\n".join(lines)
+
+
+def _band_lines(bands: dict[str, Any]) -> list[str]:
+    """The dynamic cases per band of h: hard failures and vacuous allowances, the vacuous
+    cases listed (index, h, allowance / part size, depth) up to :data:`LISTED` per band."""
+    lines = []
+    fraction = bands.get("fraction", VACUOUS_FRACTION)
+    for band, row in bands.items():
+        if band == "fraction":
+            continue
+        lines.append(
+            f"dynamic {band}: {row['cases']} cases, {row['hard']} hard; allowance above "
+            f"{fraction:.0%} of the part's size in {row['vacuous']} ({row['vacuous_deeper']} "
+            "of them deeper than the tolerance)"
+        )
+        worst = sorted(row["list"], key=lambda v: -v["step_error"] / max(v["part_size"], 1e-300))
+        for v in worst[:LISTED]:
+            lines.append(
+                f"  #{v['index']} h={v['h']:.2g}: allowance {v['step_error']:.3g} "
+                f"(part {v['part_size']:.3g}), depth {v['max_depth']:.3g}"
+                + (f", {'/'.join(v['hard'])}" if v["hard"] else "")
+            )
+        if len(worst) > LISTED:
+            lines.append(f"  ... {len(worst) - LISTED} more (--json lists every one)")
+    return lines
 
 
 def write_case(directory: Path, case: Case, record: dict[str, Any]) -> Path:

@@ -163,6 +163,8 @@ def record_of(case: Case) -> dict[str, Any]:
         "start_depth": 0.0,
         "max_depth": 0.0,
         "depth_allowed": 0.0,
+        "step_error": 0.0,
+        "part_size": 0.0,
         "energy_gain": 0.0,
         "energy_allowed": 0.0,
         "push_out": 0.0,
@@ -205,9 +207,10 @@ def _measure(
     record["max_depth"] = float(depths.max())
     step_error = 0.0
     if case.level == "dynamic" and len(states) > 1:
-        circles = scene.obstacles.circles
-        disc = float(circles[:, 2].min()) if len(circles) else np.inf
-        step_error = float(linearisation_errors(states, scene.part.bounding_radius(), disc).max())
+        errors = linearisation_errors(states, solid, shape, scene.obstacles.circles)
+        step_error = float(errors.max())
+    record["step_error"] = step_error
+    record["part_size"] = float(part_extent(scene.part))
     record["depth_allowed"] = penetration_allowance(case.level, float(depths[0]), step_error)
     if case.level != "geometric":
         gain, allowed = _energy(case, scene, states, float(telemetry.get("h", case.h)))

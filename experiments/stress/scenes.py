@@ -171,6 +171,43 @@ def pin(rng: np.random.Generator) -> Obstacles:
     return Obstacles([FLOOR, wall, finger], [[fx, fy, r]], anchors=anchors)
 
 
+RAMP_ANGLES = (40.0, 75.0)  # degrees: the ramps of issue 35's ramp-foot cases
+
+
+@dataclass(frozen=True)
+class RampFoot:
+    """A ramp (or an upright wall) standing on the floor, its face meeting the floor's top in a
+    concave corner, the foot: the obstacles, the foot's x, the unit vector down the face and
+    the face's outward normal (issue 35: a corner sliding down it into the foot)."""
+
+    obstacles: Obstacles
+    foot: float
+    down: np.ndarray
+    normal: np.ndarray
+
+
+def ramp_foot(rng: np.random.Generator, wall: bool) -> RampFoot:
+    """The floor and a ramp at 40 to 75 degrees standing on it (a triangle whose base covers
+    part of the floor's top edge, as issue 35's seam: the floor's nearest point to a corner
+    near the foot may lie under the ramp), or for ``wall`` an upright wall 0.3 thick; the face
+    descends to the right or to the left, its foot at x in [-2, 2]."""
+    foot = float(rng.uniform(-2.0, 2.0))
+    side = 1.0 if rng.uniform() < 0.5 else -1.0
+    top = float(rng.uniform(0.5, 2.0) if not wall else rng.uniform(1.0, 3.0))
+    angle = 0.5 * math.pi if wall else math.radians(rng.uniform(*RAMP_ANGLES))
+    back = foot - side * (0.3 if wall else top / math.tan(angle))
+    if wall:
+        piece = [[foot, 0.0], [foot, top], [back, top], [back, 0.0]]
+    else:
+        piece = [[foot, 0.0], [back, top], [back, 0.0]]
+    if side < 0:
+        piece.reverse()  # counter-clockwise either way
+    down = np.array([side * math.cos(angle), -math.sin(angle)])
+    normal = np.array([side * math.sin(angle), math.cos(angle)])
+    anchors = [((foot, 0.0), (float(normal[0]), float(normal[1])))]
+    return RampFoot(Obstacles([FLOOR, piece], anchors=anchors), foot, down, normal)
+
+
 FREE_FORM: dict[str, Callable[[np.random.Generator], Obstacles]] = {
     "convex": convex,
     "nonconvex": nonconvex,

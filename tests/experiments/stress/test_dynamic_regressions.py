@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from experiments.stress.bounds import vacuous
 from experiments.stress.report import read_case
 from experiments.stress.runner import record_of
 
@@ -64,13 +65,15 @@ def test_far_corner_outside_the_margin_is_caught_within_a_large_step():
 
 @pytest.mark.parametrize("name", ["004358"])
 def test_large_step_overlap_stays_within_the_linearisation_bound(name):
-    """Case 4358 (h = 0.045, a part spinning against discs): the overlap reaches 0.18, which
-    is the first-order scheme's one-step error at that h (R dtheta^2 / 2 + d^2 / (2 r)), not
-    a fault: the bound is stated in experiments.stress.bounds.DYNAMIC_PENETRATION and the
-    overlap may not grow beyond it."""
+    """Case 4358 (h = 0.045, a part spinning against discs): the overlap reaches 0.18, within
+    the first-order scheme's one-step error at that h (experiments.stress.bounds.
+    DYNAMIC_PENETRATION: a face turning 0.9 rad against discs up to 1.2 in radius). That
+    allowance (about 3) is more than the part's size (0.83): the report counts the case as
+    vacuous (issue 35), so its pass says nothing about the contacts."""
     record, _ = _rerun(name)
     assert record["hard"] == []
     assert record["max_depth"] > 0.05  # the step really is that coarse
+    assert vacuous(record) and record["step_error"] > record["part_size"]
 
 
 OPEN = sorted((CASES / "open").glob("*.yaml"))
@@ -82,10 +85,8 @@ OPEN = sorted((CASES / "open").glob("*.yaml"))
     "deep at h = 3.9e-2; case 5-122 (stress seed 5, found at the end of issue 21's second "
     "session, the same record at the session's start) falls onto shared edges 0.034 deep at "
     "h = 1.6e-2 (0.028 at 8e-3) against 0.0127 allowed; both are within the bound at h <= "
-    "4e-3, where the contacts catch them; cases 13-896 (a part near a convex piece, 0.051 deep "
-    "at h = 8.3e-2 against 0.049 allowed) and 21-443 (discs, flush: crosses a piece in step 7 "
-    "at h = 8.9e-2), found by this stop's 1,000-case runs of seeds 13 and 21 and the same "
-    "records with stop 31's code, keep every bound at h <= 4e-2",
+    "4e-3, where the contacts catch them; case 21-443 (discs, flush: crosses a piece in step 7 "
+    "at h = 8.9e-2), found by a 1,000-case run of seed 21, keeps every bound at h <= 4e-2",
 )
 @pytest.mark.parametrize("path", OPEN, ids=[p.stem for p in OPEN])
 def test_open_cases_of_the_full_run(path):
@@ -169,13 +170,28 @@ def test_the_shared_edge_fall_of_seed_5_keeps_the_bound_at_the_screens_step_and_
 
 
 @pytest.mark.parametrize("h", [4e-3, 1e-3])
-@pytest.mark.parametrize("name", ["13-000896", "21-000443"])
+@pytest.mark.parametrize("name", ["case-13-000896", "open/case-21-000443"])
 def test_the_large_step_faults_of_seeds_13_and_21_keep_the_bound_at_the_screens_step(
     name: str, h: float
 ) -> None:
-    """Cases 13-896 and 21-443 (open above at their own h, 8.3e-2 and 8.9e-2): at the
-    screen's step (4e-3) and the verdict's (1e-3) no hard bound breaks and the part stays
-    within 2e-3 of the obstacles (shapely's depths, the suite's measure)."""
-    record = _rerun_at(CASES / "open" / f"case-{name}-dynamic.yaml", h)
+    """Cases 13-896 and 21-443 (found at their own h, 8.3e-2 and 8.9e-2): at the screen's step
+    (4e-3) and the verdict's (1e-3) no hard bound breaks and the part stays within 2e-3 of the
+    obstacles (shapely's depths, the suite's measure)."""
+    record = _rerun_at(CASES / f"{name}-dynamic.yaml", h)
     assert record["hard"] == []
     assert record["max_depth"] < 2e-3
+
+
+def test_the_large_step_overlap_of_seed_13_is_within_its_one_step_allowance() -> None:
+    """Case 13-896 (h = 8.3e-2, a part near a convex piece, 0.051 deep) broke the issue-11 rule
+    (0.049 allowed: R dtheta^2 / 2 + d^2 / (2 r), which left out the turn of the part's face
+    against the piece's corners). Issue 35's allowance from the contacts it has in each step
+    allows 0.083 (one-step error 0.073, 4.5 % of the part's 1.61: not vacuous by the report's
+    5 % rule), and the overlap does not grow beyond it. Reference: the closed forms of
+    experiments.stress.measures.linearisation_errors and shapely's depth."""
+    case, stored = read_case(CASES / "case-13-000896-dynamic.yaml")
+    assert stored is not None and "penetration" in stored["hard"]  # the issue-11 rule's record
+    record = record_of(case)
+    assert record["hard"] == []
+    assert 0.05 < record["max_depth"] <= record["depth_allowed"] < 0.09
+    assert not vacuous(record)
