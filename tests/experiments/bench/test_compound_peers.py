@@ -6,7 +6,8 @@ References are independent of :mod:`feeders.composite_part`: the rectangles' and
 forms worked here (m = rho w h, I = m (w^2 + h^2) / 12; a disc's m r^2 / 2; the parallel-axis
 theorem) and shapely for the shapes. Then a drop of the cup onto a flat floor must come to rest
 on one of its stable faces (:func:`feeders.part_properties.mass_properties`) in every engine.
-Skipped without MuJoCo or pymunk (optional extras: ``pip install ".[bench]"``).
+Skipped without MuJoCo or pymunk (optional extras: ``pip install ".[bench]"``); Box2D's
+cases (the arbiter, scaled, its skin part of the shapes) without ``pip install box2d``.
 """
 
 from __future__ import annotations
@@ -223,3 +224,44 @@ def test_a_cup_dropped_onto_a_floor_rests_on_a_stable_face_in_every_engine(yaw):
     for engine, drop in endings.items():
         assert drop.ending.end == "at_rest", engine
         _resting_check(cup, drop.ending)
+
+
+@pytest.mark.parametrize("name", list(PARTS))
+@pytest.mark.parametrize("scale", [4.0, 8.0])
+def test_box2d_body_has_the_parts_mass_properties_and_its_pieces_with_the_skin(name, scale):
+    """Box2D's body (scaled by S): mass m, moment I S^2 about its origin, the centre of mass;
+    its polygons shrunk by the skin 0.01 / S and grown back by it (Box2D's polygon radius) are
+    the part's own, up to the corners' rounding (area (4 - pi) r^2 per corner)."""
+    pytest.importorskip("Box2D")
+    from experiments.bench.peers.box2d_engine import SKIN, Box2DCompoundSimulator
+
+    part, pieces = PARTS[name]
+    mass, com, inertia = _combined(pieces)
+    sim = Box2DCompoundSimulator(_scene(part), 1e-4, scale)
+    sim.reset((0.0, 3.0, 0.0, 0.0, 0.0, 0.0))
+    body = sim.body
+    assert body.mass == pytest.approx(mass, rel=1e-6)  # float32
+    assert body.inertia == pytest.approx(inertia * scale**2, rel=1e-6)
+    assert tuple(body.localCenter) == pytest.approx((0.0, 0.0), abs=1e-6)
+    r = SKIN / scale
+    cores = [f.shape for f in body.fixtures if hasattr(f.shape, "vertices")]
+    grown = shapely.union_all(
+        [shapely.Polygon(np.asarray(c.vertices) / scale).buffer(r, quad_segs=32) for c in cores]
+    )
+    reference = _reference_shape(name, com)
+    corners = 4 * len(cores)
+    assert grown.symmetric_difference(reference).area < corners * (4 - math.pi) * r * r + 1e-6
+
+
+@pytest.mark.parametrize("yaw", [0.4, -1.3, 2.2])
+@pytest.mark.parametrize("scale", [4.0, 8.0])
+def test_a_cup_dropped_onto_a_floor_rests_on_a_stable_face_in_box2d(yaw, scale):
+    pytest.importorskip("Box2D")
+    from experiments.bench.peers.box2d_engine import Box2DCompoundSimulator
+
+    cup = cup_part()
+    start = (0.0, 1.2, yaw)
+    scene = _scene(cup, start)
+    drop = peer_drop(scene, (*start, 0.0, 0.0, 0.0), Box2DCompoundSimulator(scene, 1e-4, scale), 10)
+    assert drop.ending.end == "at_rest"
+    _resting_check(cup, drop.ending)
