@@ -134,3 +134,85 @@ def test_planner_arenas_own_loader_sees_the_problems_planners_and_parameters(swe
     assert seen == set(OWN_PARAMETERS)
     for attribute in ("solved", "status", "exact solution", "propagations", "exit time"):
         assert attribute in data["attributes"]
+
+
+# Progress (issue 40): a benchmark with progress_every records each run's progress; OMPL's
+# reader puts it in the database's progress table, whose "time" counts propagations, and the
+# experiment's time limit is the propagation budget.
+PROGRESS_BUDGET = 600
+PROGRESS_EVERY = 150
+PROGRESS_RUNS = 2
+
+
+@pytest.fixture(scope="module")
+def progress_database(tmp_path_factory) -> Path:
+    import shutil
+    import subprocess
+    import sys
+
+    from feeders.design import PRESETS
+    from feeders.feeder import build_feeder
+    from planners.benchmark import Budget, benchmark_problem
+
+    out = tmp_path_factory.mktemp("progress")
+    result = benchmark_problem(
+        build_feeder(PRESETS["table3"], name="table3"),
+        "geometric",
+        "heavy_leading",
+        ["rrt", "kpiece"],
+        runs=PROGRESS_RUNS,
+        budget=Budget(60.0, PROGRESS_BUDGET),
+        seed=1,
+        experiment="progress/table3/geometric/heavy_leading",
+        progress_every=PROGRESS_EVERY,
+    )
+    log = out / "run.log"
+    log.write_text(result.log)
+    script = Path(sys.executable).with_name("ompl_benchmark_statistics")
+    command = str(script) if script.exists() else shutil.which("ompl_benchmark_statistics")
+    database = out / "progress.db"
+    subprocess.run([command, str(log), "-d", str(database)], check=True, stdout=subprocess.DEVNULL)
+    return database
+
+
+def test_the_progress_table_holds_every_runs_progress_over_propagations(
+    progress_database,
+) -> None:
+    db = sqlite3.connect(progress_database)
+    assert db.execute("SELECT timelimit, time_unit FROM experiments").fetchall() == [
+        (float(PROGRESS_BUDGET), "propagations")
+    ]
+    columns = [c[1] for c in db.execute("PRAGMA table_info(progress)")]
+    assert columns == ["runid", "time", "propagations", "tree_size", "best_goal_distance"]
+    per_run = db.execute(
+        "SELECT runid, COUNT(*), MIN(time), MAX(time), MAX(propagations) FROM progress "
+        "GROUP BY runid"
+    ).fetchall()
+    assert len(per_run) == 2 * PROGRESS_RUNS
+    for _, samples, first, last, spent in per_run:
+        assert samples >= 2
+        assert PROGRESS_EVERY <= first and last == spent  # time is the propagation count
+    run_spent = dict(db.execute("SELECT id, propagations FROM runs").fetchall())
+    for runid, *_, spent in per_run:
+        assert spent == run_spent[runid]  # the last sample is the run's end
+    for runid in run_spent:
+        series = db.execute(
+            "SELECT tree_size, best_goal_distance FROM progress WHERE runid = ? ORDER BY time",
+            (runid,),
+        ).fetchall()
+        sizes = [s for s, _ in series]
+        best = [d for _, d in series if d is not None]
+        assert sizes == sorted(sizes)  # a tree only grows
+        assert best == sorted(best, reverse=True)  # the best distance only falls
+
+
+def test_planner_arenas_own_loader_reads_the_progress(progress_database) -> None:
+    pytest.importorskip("plannerarena")
+    from plannerarena.database import load_database
+
+    data = load_database(progress_database)
+    progress = data["progress"]
+    assert {"time", "propagations", "tree size", "best goal distance"} <= set(progress.columns)
+    assert progress.height >= 2 * 2 * PROGRESS_RUNS
+    joined = progress.join(data["runs"].select("id", "planner"), left_on="runid", right_on="id")
+    assert {str(p) for p in joined["planner"].unique().to_list()} == {"RRT", "KPIECE1"}

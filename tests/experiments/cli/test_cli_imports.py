@@ -122,6 +122,7 @@ BAD_VALUES = [
     (("part", "bowl"), "part 'bowl' is neither a file nor a shipped part"),
     (("part", "cup", "--out", "x.txt"), "--out 'x.txt'"),
     (("family", "new", "x", "--part", "bowl"), "part 'bowl' is neither a file nor"),
+    (("planners", "--runs", "0"), "--runs = 0"),
 ]
 
 
