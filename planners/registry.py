@@ -13,6 +13,7 @@ bound either.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ompl import base as ob
@@ -26,16 +27,20 @@ class PlannerConfig:
     """One OMPL control planner with its parameters: ``kind`` a key of :data:`PLANNERS`,
     ``label`` the name it is logged under (OMPL's ``getName()``; Planner Arena's planner is
     ``control_`` + label), ``goal_bias`` and ``intermediate_states`` RRT's setters (None:
-    OMPL's default, 0.05 and off), ``about`` one line for the docs."""
+    OMPL's default, 0.05 and off), ``about`` one line for the docs. ``factory``
+    (``si -> ob.Planner``, a module-level function so that worker processes can import it)
+    makes the planner instead of ``kind``'s class: any other OMPL planner or one written in
+    Python (docs/planners.md)."""
 
     kind: str
     label: str
     about: str
     goal_bias: float | None = None
     intermediate_states: bool | None = None
+    factory: Callable[[oc.SpaceInformation], ob.Planner] | None = None
 
     def make(self, si: oc.SpaceInformation) -> ob.Planner:
-        planner = PLANNERS[self.kind](si)
+        planner = self.factory(si) if self.factory is not None else PLANNERS[self.kind](si)
         if self.goal_bias is not None:
             planner.setGoalBias(self.goal_bias)
         if self.intermediate_states is not None:
