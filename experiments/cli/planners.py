@@ -18,8 +18,8 @@ from experiments.cli.usage import UsageError, check_count, check_seed, out_dir
 
 MAX_WORKERS = 1024
 MAX_RUNS = 1000
-QUICK = "planners-quick"  # experiments/configs/planners-quick.yaml
-FULL = "planners"  # experiments/configs/planners.yaml
+QUICK = "planners-quick"  # experiments/planner_comparison/shipped.py
+FULL = "planners"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -27,8 +27,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "config",
         nargs="?",
         default=None,
-        help=f"a comparison config (YAML) or the name of a shipped one ({FULL}, {QUICK}); "
-        f"default: {FULL}, the full suite",
+        help=f"a comparison config (YAML, docs/planners.md) or the name of a shipped suite "
+        f"({FULL}, {QUICK}); default: {FULL}, the full suite",
     )
     p.add_argument(
         "--quick",
@@ -54,15 +54,18 @@ def run(args: argparse.Namespace) -> int:
         check_count(args.runs, "--runs", MAX_RUNS)
     if args.seed is not None:
         check_seed(args.seed)
-    from experiments.config_files import resolve_config
-
-    config = resolve_config(args.config or (QUICK if args.quick else FULL))
-    out = out_dir(args.out, inputs=[config])
     import dataclasses
 
-    from experiments.planner_comparison.suite import load_suite
+    from experiments.planner_comparison.shipped import SUITES
+    from experiments.planner_comparison.suite import load_suite, suite_from_dict
 
-    suite = load_suite(config)
+    name = args.config or (QUICK if args.quick else FULL)
+    if name in SUITES and not Path(name).is_file():
+        out = out_dir(args.out)
+        suite = suite_from_dict(SUITES[name])
+    else:
+        out = out_dir(args.out, inputs=[Path(name)])
+        suite = load_suite(Path(name))
     if args.runs is not None:
         suite = dataclasses.replace(suite, runs=args.runs)
     if args.seed is not None:

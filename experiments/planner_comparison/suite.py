@@ -2,8 +2,7 @@
 
 A YAML file (read with the project's safe loader, :func:`feeders.fields.read_yaml`); every
 field is checked here, and a bad one is a :class:`SuiteError` naming it and its allowed range
-(one line, exit status 2 on the command line). The shipped suites are
-``experiments/configs/planners.yaml`` and ``planners-quick.yaml``.
+(one line, exit status 2 on the command line). The shipped suites are in :mod:`.shipped`.
 
 A design is one of ``{preset: NAME}`` (Figs. 4-9, Table 3), ``{halton: {seed: S, index:
 I}}`` (the I-th scrambled Halton design of seed S, as a sweep draws them), ``{family: NAME or

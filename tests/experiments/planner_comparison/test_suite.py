@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from experiments.config_files import resolve_config
+from experiments.planner_comparison.shipped import SUITES
 from experiments.planner_comparison.suite import SuiteError, load_suite, suite_from_dict
 
 GOOD = {
@@ -19,7 +19,7 @@ GOOD = {
 
 @pytest.mark.parametrize("name", ["planners", "planners-quick"])
 def test_the_shipped_suites_compare_at_least_five_planners_at_every_level(name) -> None:
-    suite = load_suite(resolve_config(name))
+    suite = suite_from_dict(SUITES[name])
     assert suite.levels == ("geometric", "kinematic", "dynamic")
     assert len(suite.planners) >= 5
     assert set(suite.budgets) == set(suite.levels)
@@ -48,3 +48,16 @@ def test_a_bad_field_is_one_line_naming_it(change, message) -> None:
 def test_only_the_suites_levels_need_a_budget() -> None:
     suite = suite_from_dict({**GOOD, "levels": ["dynamic"], "budgets": {"dynamic": 50}})
     assert suite.budgets == {"dynamic": 50}
+
+
+def test_a_config_file_reads_as_its_mapping(tmp_path) -> None:
+    path = tmp_path / "suite.yaml"
+    path.write_text(
+        "name: t\ndesigns: [{preset: table3}, {scene: my.yaml}]\nplanners: [rrt, kpiece]\n"
+        "runs: 2\nbudgets: {geometric: 100, kinematic: 100, dynamic: 100}\n"
+    )
+    suite = load_suite(path)
+    assert suite == suite_from_dict(
+        {**GOOD, "designs": [{"preset": "table3"}, {"scene": "my.yaml"}]}, base=tmp_path
+    )
+    assert suite.base == str(tmp_path)
