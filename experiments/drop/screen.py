@@ -1,25 +1,31 @@
-"""The screen: a cheap first look at a design's verdict that can only fail it (issue 21).
+"""The screen: a cheap first look at a design's verdict that can only fail it (issues 21, 36).
 
 Most designs fail (94% of the first 1,000 Halton designs), and the verdict
 (:mod:`experiments.drop.verdict`) spends most of its time proving it. The screen is the
 verdict's procedure made cheaper in three ways, each measured in docs/verdict.md:
 
-- a coarser step (``h = 4e-3``, four times the verdict's): the dynamic model's decision was
-  the same at ``h = 1e-3`` and ``4e-3`` on all 195 buildable designs of the first 200;
+- a coarser step (``h = 4e-3``, four times the verdict's). On paired draws it lowers an
+  entry's success probability in a few designs (by 0.06 to 0.11 in designs 181 and 214 of the
+  first 1,000), so the screen's test states its error for the verdict's p with that shift
+  folded into its hypotheses (:class:`experiments.drop.screen_settings.ScreenSettings`), or,
+  with ``confirm_step``, confirms a failure on the same draws at the verdict's step
+  (:func:`run_sequence`: then for any coupling of the two steps);
 - Wald's test per entry (:mod:`experiments.drop.sequential`) with a small error where it
   matters: calling an entry that works at ``works_p`` failing has probability at most about
   ``false_fails`` (0.001), while passing a ``fails_p`` entry on to the verdict is allowed
-  often (``false_works``, 0.1), since it costs only the verdict's time;
+  (``false_works``, 0.01), since it costs only the verdict's time;
 - one drop per made feeder, from the entry most likely to fail so far (the lowest
-  log-likelihood ratio; the first entry on a tie), so a design that fails from one entry is
-  decided by that entry's drops alone: five failures in a row, not five trials of both.
+  log-likelihood ratio; ``first_entry`` on a tie), so a design that fails from one entry is
+  decided by that entry's drops alone: four failures in a row, not four trials of both.
 
 The design *fails* the screen as soon as one entry fails its test, *passes* when every entry
 passes, and is *undecided* when an entry is still undecided after ``max_drops`` drops of its
-own; only a failure prunes. A
-drop's draw is :func:`experiments.drop.perturbations.draw` of the screen's seed and the drop's
-index, so the same seed gives the same screen on any executor. The exact operating
-characteristic: :func:`experiments.drop.operating.screen_operating_point`.
+own; only a failure prunes. A drop's draw is :func:`experiments.drop.perturbations.draw` of
+the screen's seed and the drop's index, so the same seed gives the same screen on any
+executor. The screen's decisions depend only on the outcomes of the drops it sees, which is
+what lets :mod:`experiments.drop.resampled` replay it against a pool of simulated drops. The
+exact operating characteristic: :func:`experiments.drop.operating.screen_operating_point`
+and :func:`experiments.drop.operating.screen_fails_at_verdict_p`.
 """
 
 from __future__ import annotations

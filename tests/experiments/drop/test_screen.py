@@ -56,13 +56,13 @@ def test_an_entry_that_always_fails_is_decided_by_three_drops_of_its_own():
 
 
 def test_by_default_four_failures_of_the_last_entry_decide_a_design_that_fails_from_it():
-    """Issue 36's default: four failures against works_p = 0.85 and fails_p = 0.15 carry the
-    LLR to 4 ln(0.15 / 0.85) = -6.94 <= ln(0.001 / 0.99) = -6.90, three (-5.20) do not; the
+    """Issue 36's default: four failures against works_p = 0.85 and fails_p = 0.1 carry the
+    LLR to 4 ln(0.15 / 0.9) = -7.17 <= ln(0.001 / 0.99) = -6.90, three (-5.38) do not; the
     last entry drops first, so a design that fails from it costs 4 drops, and one that fails
     from the first entry 5 (the last succeeds once, then the first fails four times)."""
     settings = ScreenSettings()
     test = wald_of(settings)
-    assert 4 * math.log(0.15 / 0.85) == pytest.approx(test.llr(0, 4))
+    assert 4 * math.log(0.15 / 0.9) == pytest.approx(test.llr(0, 4))
     assert test.status(0, 4) == FAILS and test.status(0, 3) == UNDECIDED
     run = run_sequence(test, 2, settings.max_drops, lambda k, i: k == 0, None, -1)
     assert (run.drops, run.successes, run.coarse_drops) == ((0, 4), (0, 0), 4)
@@ -128,14 +128,15 @@ def test_the_stated_error_holds_a_design_that_works_is_almost_never_failed():
     assert screen_operating_point(0.3, settings).fails > 0.9
 
 
-def test_at_the_verdicts_p_093_a_design_is_failed_at_most_0002_with_a_coarse_shift_of_0085():
+def test_at_the_verdicts_p_093_a_design_is_failed_at_most_0002_with_a_coarse_shift_to_011():
     """Issue 36's goal, in the model of a measured shift: one entry of a design that works
     at p = 0.93 at the verdict's step loses 0.085 at the screen's (designs 181 and 214 on
-    paired draws). Issue 21's test fails it with probability 0.067; the default at most
-    0.002."""
+    paired draws; 214's measured 0.11 too). Issue 21's test fails it with probability 0.067;
+    the default at most 0.002."""
     assert screen_fails_at_verdict_p(0.93, OLD, shift=0.085) > 0.06
     for p in (0.93, 0.95, 0.97, 1.0):
-        assert screen_fails_at_verdict_p(p, ScreenSettings(), shift=0.085) <= 0.002
+        for shift in (0.085, 0.11):
+            assert screen_fails_at_verdict_p(p, ScreenSettings(), shift=shift) <= 0.002
 
 
 def test_screen_then_verdict_is_the_product_of_the_two():
@@ -206,10 +207,11 @@ def test_a_confirmed_failure_costs_the_replay_of_the_failed_draws_only():
     run = run_sequence(test, 2, 60, lambda k, i: k == 0, lambda k, i: k == 0, -1)
     assert screen_decision(run.statuses) == FAILS
     assert run.coarse_drops == 4 and run.fine_drops == 4
-    # one coarse success among the failures: replayed only if the failures cannot decide
-    outcomes = iter([True, False, False, False, False, False])
+    # a success, then six failures (2.14 - 6 x 1.79 = -8.61; five: -6.82 > -6.90): the six
+    # failures' replays decide (with the success counted a success: -8.61), it is not replayed
+    outcomes = iter([True] + [False] * 6)
     run = run_sequence(test, 1, 60, lambda k, i: next(outcomes), lambda k, i: False)
-    assert screen_decision(run.statuses) == FAILS and run.fine_drops == 5
+    assert screen_decision(run.statuses) == FAILS and run.fine_drops == 6
 
 
 def test_with_confirmation_the_error_holds_at_the_fine_p_whatever_the_coarse_step_does():
