@@ -418,7 +418,7 @@ def benchmark_control_problem(
     request.saveConsoleOutput = False  # else an ompl_<host>_<date>.console file per experiment
     untracked = problem.goal.distanceGoal
     if progress_every is not None:
-        problem.goal.distanceGoal = _tracking(untracked, best)
+        problem.goal.distanceGoal = _tracking(untracked, best)  # type: ignore[method-assign, assignment]
     try:
         bench.benchmark(request)
     finally:

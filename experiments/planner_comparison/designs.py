@@ -33,10 +33,12 @@ def scene_for(design: dict[str, Any], base: str = ".") -> Scene:
         from feeders.device_family import load_family, packaged_family
 
         given = Path(str(design["family"]))
-        path = _local(given, base)
-        family = load_family(path if path is not None else packaged_family(str(given)))
-        values = design.get("values") or [p.default for p in family.parameters]
-        return dataclasses.replace(family.build(list(values)), name=name)
+        path = _local(given, base) or packaged_family(str(given))
+        if path is None:
+            raise FileNotFoundError(2, "no such family file or packaged family", str(given))
+        family = load_family(path)
+        vector = design.get("values") or [p.default for p in family.parameters]
+        return dataclasses.replace(family.build(list(vector)), name=name)
     from feeders.scene_yaml import load_scene
 
     given = Path(str(design["scene"]))
