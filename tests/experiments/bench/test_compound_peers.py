@@ -265,3 +265,46 @@ def test_a_cup_dropped_onto_a_floor_rests_on_a_stable_face_in_box2d(yaw, scale):
     drop = peer_drop(scene, (*start, 0.0, 0.0, 0.0), Box2DCompoundSimulator(scene, 1e-4, scale), 10)
     assert drop.ending.end == "at_rest"
     _resting_check(cup, drop.ending)
+
+
+def _cup_on_an_incline(phi: float, mu: float) -> tuple[Scene, tuple[float, ...]]:
+    """The cup base down on a slab whose top face rises at ``phi`` through the origin (a far
+    wall beyond its lower end, so the free box holds the start)."""
+    u, n = np.array([math.cos(phi), math.sin(phi)]), np.array([-math.sin(phi), math.cos(phi)])
+    slab = np.array([-20 * u - n, 20 * u - n, 20 * u, -20 * u])
+    wall = np.array([-25 * u - n, -20 * u - n, -20 * u + 8 * n, -25 * u + 8 * n])
+    yaw = phi - math.pi / 2  # the base (body +x, 0.345 from the centre of mass) toward -n
+    com = 5.0 * u + 0.345 * n
+    start = (float(com[0]), float(com[1]), yaw)
+    goal = Goal(-1.0, 1.0, -60.0, -59.0, -math.pi / 2, 0.3)
+    scene = Scene(
+        "incline", Obstacles((slab, wall), np.zeros((0, 3))), cup_part(), (-30, 30, -30, 30),
+        {"rest": start}, goal, friction=mu, restitution=0.0,
+    )  # fmt: skip
+    return scene, (*start, 0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "pymunk", "box2d"])
+def test_the_cup_slides_down_an_incline_at_the_coulomb_closed_form(engine):
+    """Base down on a plane rising at phi with friction mu, the cup slides s = a t^2 / 2,
+    a = g (sin phi - mu cos phi), without turning: the compound body's contact and friction
+    are the part's, not its pieces' seams'."""
+    phi, mu, h, t = 0.5, 0.1, 1e-4, 0.6
+    scene, start = _cup_on_an_incline(phi, mu)
+    if engine == "box2d":
+        pytest.importorskip("Box2D")
+        from experiments.bench.peers.box2d_engine import Box2DCompoundSimulator
+
+        sim = Box2DCompoundSimulator(scene, h, 4.0)
+    else:
+        sim = {"mujoco": MujocoCompoundSimulator, "pymunk": PymunkCompoundSimulator}[engine](
+            scene, h
+        )
+    sim.reset(start)
+    out = np.empty((round(t / h), 6))
+    sim.run(out)
+    u = np.array([math.cos(phi), math.sin(phi)])
+    s = float((np.asarray(start[:2]) - out[-1, :2]) @ u)
+    accel = 9.81 * (math.sin(phi) - mu * math.cos(phi))
+    assert s == pytest.approx(0.5 * accel * t * t, rel=0.01)
+    assert abs(out[-1, 2] - start[2]) < 1e-3
