@@ -22,7 +22,10 @@ below anything physical."""
 DYNAMIC_PENETRATION = 0.01
 """Dynamic level (length): validity.dynamic.PENETRATION_TOLERANCE, the deepest overlap a valid
 dynamic state may have (what a planner accepts); a part started deeper (it never is here) may
-keep its start depth. On top of it the largest one-step linearisation error of the run
+keep its start depth. On top of it the linearisation errors of the run, summed over each
+stretch of steps the part spends overlapping (:func:`experiments.stress.measures.
+accumulated_errors`; an overlap is only kept from approaching, so it may grow by each step's
+error), their largest sum; each step's error is
 (:func:`experiments.stress.measures.linearisation_errors`): Eq. 7 keeps the gaps linearised at
 the start of a step non-negative, and the true gap of a contact the part has in that step
 leaves its linearisation by at most |b| dtheta^2 / 2 for a point of the part at b against an
@@ -31,8 +34,8 @@ obstacle (faces, vertices and discs alike: their gaps are convex in the point), 
 the part, which turns with it (issue 35: derived from the features within the step's reach,
 not from the scene's smallest disc). Negligible at h = 1e-3 (about 1e-4 at 20 rad/s); at
 h = 5e-2 it reaches tenths of a length, where the bound says little: the report counts the
-cases whose allowance exceeds VACUOUS_FRACTION of the part's size. The pose corrections keep
-it from adding up over steps; a run whose overlap grows beyond it fails."""
+cases whose allowance exceeds VACUOUS_FRACTION of the part's size. A run whose overlap grows
+beyond it (a contact missed for a step: first order in h, not second) fails."""
 
 VACUOUS_FRACTION = 0.05
 """A dynamic case whose one-step linearisation allowance exceeds this fraction of the part's
@@ -71,7 +74,8 @@ push-out cap; slack for round-off."""
 
 def penetration_allowance(level: str, start_depth: float, step_error: float = 0.0) -> float:
     """Deepest overlap (length) a run of ``level`` may reach from a start ``start_depth`` deep;
-    ``step_error`` is the dynamic level's largest one-step linearisation error of the run."""
+    ``step_error`` is the dynamic level's largest sum of linearisation errors over a stretch of
+    overlap (:func:`experiments.stress.measures.accumulated_errors`)."""
     if level == "dynamic":
         return max(start_depth, DYNAMIC_PENETRATION) + step_error + EXACT_PENETRATION
     return max(start_depth, 0.0) + EXACT_PENETRATION

@@ -24,6 +24,7 @@ from experiments.stress.case import Case
 from experiments.stress.measures import (
     PartShape,
     Solid,
+    accumulated_errors,
     component_of,
     correction_work,
     free_components,
@@ -208,7 +209,7 @@ def _measure(
     step_error = 0.0
     if case.level == "dynamic" and len(states) > 1:
         errors = linearisation_errors(states, solid, shape, scene.obstacles.circles)
-        step_error = float(errors.max())
+        step_error = float(accumulated_errors(errors, depths).max())
     record["step_error"] = step_error
     record["part_size"] = float(part_extent(scene.part))
     record["depth_allowed"] = penetration_allowance(case.level, float(depths[0]), step_error)

@@ -182,16 +182,17 @@ def test_the_large_step_faults_of_seeds_13_and_21_keep_the_bound_at_the_screens_
     assert record["max_depth"] < 2e-3
 
 
-def test_the_large_step_overlap_of_seed_13_is_within_its_one_step_allowance() -> None:
+def test_the_large_step_overlap_of_seed_13_is_within_its_allowance_and_counted_vacuous() -> None:
     """Case 13-896 (h = 8.3e-2, a part near a convex piece, 0.051 deep) broke the issue-11 rule
     (0.049 allowed: R dtheta^2 / 2 + d^2 / (2 r), which left out the turn of the part's face
     against the piece's corners). Issue 35's allowance from the contacts it has in each step
-    allows 0.083 (one-step error 0.073, 4.5 % of the part's 1.61: not vacuous by the report's
-    5 % rule), and the overlap does not grow beyond it. Reference: the closed forms of
+    allows 0.096 (the errors 0.086, 5.3 % of the part's 1.61), and the overlap stays within it;
+    that is above the report's 5 % rule, so the case is counted and listed as one whose bound
+    says little. Reference: the closed forms of
     experiments.stress.measures.linearisation_errors and shapely's depth."""
     case, stored = read_case(CASES / "case-13-000896-dynamic.yaml")
     assert stored is not None and "penetration" in stored["hard"]  # the issue-11 rule's record
     record = record_of(case)
     assert record["hard"] == []
-    assert 0.05 < record["max_depth"] <= record["depth_allowed"] < 0.09
-    assert not vacuous(record)
+    assert 0.05 < record["max_depth"] <= record["depth_allowed"] < 0.1
+    assert vacuous(record)

@@ -12,6 +12,7 @@ import pytest
 from experiments.stress.bounds import VACUOUS_FRACTION, vacuous
 from experiments.stress.measures import (
     Solid,
+    accumulated_errors,
     linearisation_errors,
     penetration_depths,
     union_of,
@@ -171,3 +172,13 @@ def test_the_report_counts_and_lists_vacuous_allowances_by_band_of_h():
     text = table(data)
     assert "allowance above 5% of the part's size in 1 (1 of them deeper" in text
     assert "#3 h=0.05: allowance 0.5 (part 2)" in text
+
+
+def test_the_errors_add_up_while_the_part_overlaps_and_restart_once_it_is_clear():
+    """An overlapping contact is only kept from approaching, so each step of an overlap may
+    deepen it by that step's error: the allowance sums them from the last step begun clear
+    of the solid (depth 0), and a step begun clear starts the sum again."""
+    errors = np.array([1.0, 2.0, 4.0, 8.0, 16.0])
+    depths = np.array([0.0, 0.1, 0.2, 0.0, 0.3, 0.0])  # at the states, before each step
+    total = accumulated_errors(errors, depths)
+    np.testing.assert_array_equal(total, [1.0, 3.0, 7.0, 8.0, 24.0])
