@@ -2,7 +2,9 @@
 scenes beside MuJoCo and pymunk (when installed), the feeder's convergence, the ladder's cost
 against its verdicts' error, speed tables; or, with ``--level``, one level's detailed speed;
 or, with ``--agreement``, the same perturbed feeder drops in partfeeder, MuJoCo and pymunk and
-how they agree (:mod:`experiments.bench.agreement`); or, with ``--trial``, the cost of one
+how they agree (:mod:`experiments.bench.agreement`; with ``--family``, a device family's
+verdict drops of its own part, and ``--arbiter``, Box2D on the drops they dispute: issue 35);
+or, with ``--trial``, the cost of one
 verdict trial and its parts (:mod:`experiments.bench.trial_cost`); or, with ``--verdict``, the
 cost of deciding designs by the full verdict alone and by the screen then the verdict
 (:mod:`experiments.bench.verdict_cost`); or, with ``--part``, a step's cost for the cup (three

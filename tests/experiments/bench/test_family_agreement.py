@@ -19,6 +19,7 @@ import pytest
 pytest.importorskip("mujoco")
 pytest.importorskip("pymunk")
 
+from experiments.bench.agreement.arbiter import chosen_drops
 from experiments.bench.agreement.family import (
     FamilySuite,
     family_agreement_data,
@@ -110,6 +111,9 @@ def no_work(monkeypatch) -> list[str]:
         (["--family", "fig1-cup", "--design", "halton:0"], "--design halton:0"),
         (["--family", "fig1-cup", "--pymunk-radius", "0.5"], "--pymunk-radius = 0.5"),
         (["--pymunk-radius", "0.002"], "--pymunk-radius needs --family"),
+        (["--family", "fig1-cup", "--arbiter", "0"], "--arbiter = '0'"),
+        (["--family", "fig1-cup", "--arbiter", "4,x"], "--arbiter = '4,x'"),
+        (["--arbiter", "4"], "--arbiter needs --family"),
     ],
 )
 def test_bad_family_arguments_are_one_line_and_exit_2(capsys, no_work, argv, says):
@@ -126,3 +130,18 @@ def test_good_family_arguments_reach_the_suite(capsys, no_work):
     with pytest.raises(AssertionError, match="ran before"):
         run(["bench", "--agreement", "--quick", "--family", "fig1-cup", "--design", OPTIMUM])
     assert no_work == ["family_agreement_data"]
+
+
+def test_the_arbiter_takes_the_disputed_drops_and_a_control_set_where_all_agree():
+    def row(design, trial, entry, engine, success):
+        return {"design": design, "trial": trial, "entry": entry, "engine": engine,
+                "success": success, "start": (0.0,) * 6}  # fmt: skip
+
+    engines = ("partfeeder", "mujoco", "pymunk")
+    drops = [row("a", t, "e", e, True) for t in range(5) for e in engines]
+    drops[3 * 2 + 1]["success"] = False  # trial 2: MuJoCo alone
+    drops[3 * 4 + 0]["success"] = False  # trial 4: partfeeder alone
+    unbuilt = [{**row("a", 9, "e", e, False), "start": []} for e in engines]  # not run
+    disputed, control = chosen_drops({"drops": drops + unbuilt}, control=3)
+    assert disputed == [("a", 2, "e"), ("a", 4, "e")]
+    assert control == [("a", 0, "e"), ("a", 1, "e")]
