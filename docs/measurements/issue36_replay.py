@@ -5,7 +5,9 @@
 - per design, the screen's false-fail rate over ``--seeds`` resampled screens
   (:func:`experiments.drop.resampled.false_fail_rate`) for issue 21's screen, this issue's
   default, and each with the confirmation at the verdict's step, with the mean drops a
-  screen ran (its cost in drops at each step).
+  screen ran (its cost in drops at each step: coarse + fine); without confirmation also the
+  rate exactly for the pool's per-entry p at the coarse step (each resampled entry is a coin
+  of that p: :func:`experiments.drop.operating.screen_operating_point`).
 
 ``python docs/measurements/issue36_replay.py docs/measurements/issue36_pool.json``
 prints markdown tables.
@@ -17,6 +19,7 @@ import argparse
 import json
 from pathlib import Path
 
+from experiments.drop.operating import screen_operating_point
 from experiments.drop.resampled import EntryPool, false_fail_rate, paired_shift
 from experiments.drop.screen_settings import ScreenSettings
 
@@ -93,8 +96,14 @@ def main() -> None:
         cells = []
         for settings in RULES.values():
             r = false_fail_rate(pools, settings, args.seeds)
+            exact = ""
+            if settings.confirm_step is None:  # the pool's coarse p per entry, exactly
+                survive = 1.0
+                for e in pools:
+                    survive *= 1.0 - screen_operating_point(p_of(e.coarse), settings, 1).fails
+                exact = f"; exact {100 * (1.0 - survive):.2f}%"
             cells.append(
-                f"{100 * r.rate:.1f}% [{100 * r.ci[0]:.1f}, {100 * r.ci[1]:.1f}] "
+                f"{100 * r.rate:.1f}% [{100 * r.ci[0]:.1f}, {100 * r.ci[1]:.1f}]{exact} "
                 f"({r.mean_coarse_drops:.1f} + {r.mean_fine_drops:.1f} drops)"
             )
         print(f"| {d} | {ps} | " + " | ".join(cells) + " |")

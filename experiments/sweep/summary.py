@@ -691,8 +691,8 @@ def pipeline_line(pipe: dict[str, Any]) -> str:
     unreached = pipe.get("unreached") or []
     if pipe["n"] and unreached:
         return (
-            head + f"measured on {pipe['n']} {basis} designs ({sample}): no design reached "
-            f"{' or '.join(unreached)}, so no cost or speed-up is given"
+            head + f"{sample}: no {basis} design reached {unreached[0]}, so its cost would be "
+            f"the rungs below alone; no cost or speed-up is given"
         )
     cost = "n/a" if pipe["cost_s"] is None else f"{pipe['cost_s']:.2f} s/design"
     lost = pipe.get("thrown_away") or []

@@ -236,7 +236,7 @@ def test_a_pipeline_whose_verdict_no_holdout_design_reached_has_no_speed_up(
     assert pipe["unreached"] == ["passive"]
     assert pipe["speedup"] is None and pipe["cost_s"] is None
     text = summary_table(summary)
-    assert "no design reached passive, so no cost or speed-up is given" in text
+    assert "no holdout design reached passive, so its cost would be the rungs below" in text
     assert "at recall 0% [0%, 66%] (0 of 2 that work, the holdout)" in text
 
 

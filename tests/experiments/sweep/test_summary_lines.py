@@ -138,9 +138,9 @@ def test_a_pipeline_whose_later_rungs_saw_no_design_prints_no_speed_up() -> None
     )
     line = pipeline_line(row)
     assert line == (
-        "pipeline screen -> geometric -> passive: measured on 8 holdout designs (holdout n=8; "
-        "reached screen 8, geometric 0, passive 0): no design reached geometric or passive, so "
-        "no cost or speed-up is given"
+        "pipeline screen -> geometric -> passive: holdout n=8; reached screen 8, geometric 0, "
+        "passive 0: no holdout design reached geometric, so its cost would be the rungs below "
+        "alone; no cost or speed-up is given"
     )
     assert "x [" not in line
 
