@@ -86,7 +86,10 @@ def test_replay_reproduces_a_failing_case_record(tmp_path):
         (["--levels", "dynamic,dynamic"], "--levels"),
         (["--seed", str(2**64)], "--seed"),  # issue 23: accepted here, refused by plan
         (["--seed", "-1"], "--seed"),
-        (["--cases", "0"], "--cases"),
+        (["--cases", "0"], "--cases"),  # and no composite or ramp-foot cases either
+        (["--ramp-foot", "-1"], "--ramp-foot"),
+        (["--step", "0.5"], "--step"),
+        (["--case", str(30_000_000)], "--case"),
     ],
 )
 def test_bad_input_is_one_line_naming_the_option(capsys, argv, named):
