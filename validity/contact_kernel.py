@@ -39,6 +39,17 @@ each nearby piece asked only as far as a rule needs it (:func:`_overlap_below`):
   as its depth (:func:`_add_axis_contact`): the separating-axis theorem's penetration depth,
   exact for convex pairs (Ericson, *Real-Time Collision Detection*, 2005, section 5.2.1).
 
+- a point whose nearest feature of a piece is a seam (a face another piece covers) is in
+  front of the piece's surface faces that begin beyond the cover: the nearest such face
+  within the margin is its contact, at the distance to the face's line
+  (:func:`surface_in_front`), and so is it for a corner inside another piece: a corner
+  sliding down a ramp, or inside a wall's face, into the concave corner where it meets a
+  floor keeps the floor ahead of it (issue 35: it entered the floor by h times its speed);
+- a flat joint (a vertex where the face continues on a neighbouring piece) gives the
+  distance to the face's line only on the joint's own normal: off it, the neighbour's
+  feature is the nearer one (issue 35: the cup's base continued its outer face beyond the
+  cup's outer corner and reported pin B 8.5e-3 deep where it was 2.8e-6 clear).
+
 ``FEATURE_SLOP`` (1e-6 length) is the depth below which two features are not told apart: a
 feature of the pair thinner than that is not resolved, and a vertex that far from the other
 shape or nearer is in contact, whichever feature it is nearest (stress case 11/8546: a corner
@@ -134,7 +145,10 @@ def point_polygon_feature(
             nx, ny, ok = _edge_normal(b, i, nb)
             if ok and surface[min(i, last_s)]:
                 gap = nx * (px - b[joint, 0]) + ny * (py - b[joint, 1])
-                return gap, nx, ny, px - gap * nx, py - gap * ny, False, False, i
+                along = abs(ny * (px - b[joint, 0]) - nx * (py - b[joint, 1]))
+                if gap >= 0.0 and along <= FEATURE_SLOP:
+                    return gap, nx, ny, px - gap * nx, py - gap * ny, False, False, i
+                break  # off the joint's normal: the neighbour's own feature is nearer
         hidden = True
     if best > _TINY and not vertex:  # the edge's own normal: exact even for a tiny gap
         nx, ny, _ = _edge_normal(b, edge, nb)
@@ -142,6 +156,43 @@ def point_polygon_feature(
     if best > _TINY:
         return best, (px - cx) / best, (py - cy) / best, cx, cy, vertex, hidden, edge
     return best, in_nx, in_ny, cx, cy, vertex, hidden, in_i  # on the boundary: the edge's normal
+
+
+@leaf_kernel
+def surface_in_front(
+    px: float, py: float, b: np.ndarray, nb: int, reach: float, surface: np.ndarray
+) -> tuple[float, float, float, int]:
+    """The surface face of the convex piece b[:nb] that p is in front of, whose segment lies
+    within ``reach`` of p (the nearest such), as ``(gap, nx, ny, edge)``: the distance from p
+    to the face's line and its outward normal (edge -1 and an infinite gap when there is
+    none).
+
+    A point whose nearest feature of b is a seam, or that lies inside another piece, can
+    still be about to cross b's surface: a corner sliding down a ramp into the concave corner
+    where the ramp meets a floor is nearest the floor's face under the ramp (a seam), and the
+    floor's surface begins at the ramp's foot, within a step of it (issue 35: such a corner
+    entered the floor by h times its speed). The face's line is where b's solid begins there:
+    b lies behind it along the whole face, so keeping p in front of it is a true constraint,
+    never stronger than the solid, and the linearised contact of Eq. 7 needs no more."""
+    best, gap, nx, ny, edge = reach, np.inf, 0.0, 0.0, -1
+    last_s = surface.shape[0] - 1
+    for i in range(nb):
+        if not surface[min(i, last_s)]:
+            continue
+        ex_, ey_, ok = _edge_normal(b, i, nb)
+        if not ok:
+            continue
+        d = ex_ * (px - b[i, 0]) + ey_ * (py - b[i, 1])
+        if d < 0.0:
+            continue
+        j = (i + 1) % nb
+        ax, ay = b[i, 0], b[i, 1]
+        ex, ey = b[j, 0] - ax, b[j, 1] - ay
+        t = min(1.0, max(0.0, ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey)))
+        seg = math.hypot(px - ax - t * ex, py - ay - t * ey)
+        if seg < best:
+            best, gap, nx, ny, edge = seg, d, ex_, ey_, i
+    return gap, nx, ny, edge
 
 
 @leaf_kernel
@@ -494,23 +545,34 @@ def find_contacts(
         explained = 0.0  # the deepest a vertex of either shape lies inside the other
         nearest = np.inf
         for k in range(n):
-            if buried >> k & 1:
+            is_corner = part_corners[min(k, last_pc)]
+            if buried >> k & 1 and not (is_corner and gap < margin):
                 continue
+            px, py = world[k, 0], world[k, 1]
             d, nx, ny, cx, cy, at_vertex, hidden, edge = point_polygon_feature(
-                world[k, 0], world[k, 1], b, nb, margin, b_surface, b_corners
+                px, py, b, nb, margin, b_surface, b_corners
             )
-            nearest = min(nearest, d)
-            explained = max(explained, -d)
+            if buried >> k & 1:  # its depth is the solid's; here only a face it may cross
+                if d <= 0.0:
+                    continue
+            else:
+                nearest = min(nearest, d)
+                explained = max(explained, -d)
+            if d < margin and hidden and is_corner:
+                g, gnx, gny, e = surface_in_front(px, py, b, nb, margin, b_surface)
+                if e >= 0:
+                    d, nx, ny, at_vertex, hidden, edge = g, gnx, gny, False, False, e
+                    cx, cy = px - g * gnx, py - g * gny
             if (
                 d < margin
                 and not hidden
-                and part_corners[min(k, last_pc)]
+                and is_corner
                 and (
                     d <= FEATURE_SLOP
                     or _keeps(b, nb, edge, cx, cy, at_vertex, True, world, n, b, nb, gap > 0.0)
                 )
             ):
-                nc = _add(contacts, nc, d, nx, ny, world[k, 0], world[k, 1])
+                nc = _add(contacts, nc, d, nx, ny, px, py)
         for j in range(nb):
             if not b_corners[j]:
                 continue
@@ -519,6 +581,11 @@ def find_contacts(
             )
             nearest = min(nearest, d)
             explained = max(explained, -d)
+            if d < margin and hidden:
+                g, gnx, gny, e = surface_in_front(b[j, 0], b[j, 1], world, n, margin, part_surface)
+                if e >= 0:
+                    d, nx, ny, at_vertex, hidden, edge = g, gnx, gny, False, False, e
+                    cx, cy = b[j, 0] - g * gnx, b[j, 1] - g * gny
             if (d < margin and not hidden) and (
                 d <= FEATURE_SLOP
                 or _keeps(world, n, edge, cx, cy, at_vertex, False, world, n, b, nb, gap > 0.0)
@@ -545,6 +612,11 @@ def find_contacts(
             ox, oy, world, n, margin + r, part_surface, part_corners
         )
         d -= r
+        if d < margin and hidden:
+            g, gnx, gny, e = surface_in_front(ox, oy, world, n, margin + r, part_surface)
+            if e >= 0:
+                d, nx, ny, hidden = g - r, gnx, gny, False
+                cx, cy = ox - g * gnx, oy - g * gny
         if d < margin and not hidden:
             nc = _add(contacts, nc, d, -nx, -ny, cx, cy)
         else:
@@ -609,6 +681,12 @@ def _disc_contacts(
                 cx, cy, verts[p], counts[p], margin + r, surface[p], corners[p]
             )
             d -= r
+            if d < margin and hidden:
+                g, gnx, gny, e = surface_in_front(
+                    cx, cy, verts[p], counts[p], margin + r, surface[p]
+                )
+                if e >= 0:
+                    d, nx, ny, hidden = g - r, gnx, gny, False
             px, py = cx - r * nx, cy - r * ny
             if d < margin and not hidden and not _strictly_inside(world, wcounts, wboxes, px, py):
                 nc = _add(contacts, nc, d, nx, ny, px, py)
