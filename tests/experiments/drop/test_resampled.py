@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.stats import binomtest
 
-from experiments.drop.operating import screen_operating_point
+from experiments.drop.operating import screen_fails_at_verdict_p, screen_operating_point
 from experiments.drop.resampled import (
     EntryPool,
     false_fail_rate,
@@ -63,3 +63,16 @@ def test_the_paired_shift_counts_the_discordant_draws_and_leaves_out_faults():
 def test_a_bad_pool_is_refused(coarse, fine):
     with pytest.raises(ValueError, match="pool"):
         EntryPool(coarse, fine)
+
+
+def test_a_pool_whose_coarse_step_loses_02_is_failed_as_the_shifted_characteristic_says():
+    """Entry 0 succeeds at the fine step always and at the coarse step 8 times in 10; entry 1
+    always: the design's rate at the verdict's p = 1 with one entry 0.2 lower at the screen's
+    step (``screen_fails_at_verdict_p``), within the 99.9% interval of 6,000 screens."""
+    settings = ScreenSettings()
+    pools = [EntryPool("1111111100", "1111111111"), EntryPool("1" * 10, "1" * 10)]
+    rate = false_fail_rate(pools, settings, seeds=6000)
+    exact = screen_fails_at_verdict_p(1.0, settings, shift=0.2)
+    low, high = binomtest(rate.fails, rate.seeds).proportion_ci(0.999, method="exact")
+    assert low <= exact <= high
+    assert exact > 0.002  # p = 0.8 at the screen's step: beyond what the default is built for
