@@ -68,7 +68,7 @@ def level_figure(level: str, data: dict[str, Any], labels: list[str], path: Path
         prof.set_xlabel("tau: within this factor of the best (log2)")
         prof.set_ylabel("fraction of problems")
         n = len(data["profile"]["problems"])
-        prof.set_title(f"{level}: performance profile ({n} problems)", fontsize=10)
+        prof.set_title(f"{level}: profile, {n} problems", fontsize=10)
         prof.grid(alpha=0.3)
         prof.legend(fontsize=8, loc="lower right")
     else:

@@ -9,9 +9,9 @@ runs each, budgets in propagations (the default sweep's rungs, chosen there by r
 docs/planner-arena.md). Problems known to be unsolvable are not planned (the full suite plans
 them, as a check of the necessary conditions).
 
-The full suite: every design of the paper (Figs. 4-9, Table 3), six Halton designs of seed 1
-(three that pass the necessary conditions, one whose heavy-trailing entry fails the turn test,
-two that fail the sliced test), and the cup; five runs each.
+The full suite: every design of the paper (Figs. 4-9, Table 3; fig7a fails the sliced test),
+six Halton designs of seed 1 (four that pass the necessary conditions, one whose heavy-trailing
+entry fails the turn test, one that fails the sliced test), and the cup; five runs each.
 """
 
 from __future__ import annotations
