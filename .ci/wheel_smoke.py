@@ -56,6 +56,14 @@ SHORTER: dict[str, tuple[str, str]] = {
         "partfeeder stress --cases 30 --workers 2 --out stress",
         "~30 min: 30 of the 10,000 cases",
     ),
+    "partfeeder bench --out bench-out": (
+        "partfeeder bench --quick --out bench-out",
+        "~3 min: the quick suite, written to the same files (CI well under 30 minutes)",
+    ),
+    "partfeeder planners --quick --out planners-quick": (
+        "partfeeder planners --quick --runs 1 --out planners-quick",
+        "~5 min: the quick suite with 1 run per planner and problem (of 3)",
+    ),
     "partfeeder bench --agreement --out agree": (
         "partfeeder bench --agreement --out agree --design table3 --trials 3",
         "~6 min: one design, 3 trials per entry",
@@ -249,6 +257,12 @@ CLAIMS: dict[str, Check] = {
     ),
     "partfeeder bench --agreement --out agree": files(
         "agree/agreement.json", "agree/agreement.md", "agree/*.png"
+    ),
+    "partfeeder planners --quick --out planners-quick": files(
+        "planners-quick/report.html",
+        "planners-quick/report.json",
+        "planners-quick/figures/*.png",
+        "planners-quick/ompl/benchmark.db",
     ),
     "partfeeder feasibility --designs 500 --levels kinematic,geometric --out feas": files(
         "feas/*.json", "feas/*.csv"

@@ -108,9 +108,43 @@ def _solid_depth(scene, px: float, py: float) -> float | None:
     return boundary.distance(point) if union.contains(point) else None
 
 
+def _faces_ahead(scene, px: float, py: float, nx: float, ny: float) -> list[float]:
+    """The distances from p to the lines of the polygons' faces with outward normal n that p
+    is in front of and that are the solid's surface within the margin of p (shapely: a point
+    of the face 1e-6 from its point nearest p lies on the union's boundary, with the union
+    behind it and not in front): a corner whose nearest floor point lies under a ramp, or
+    that lies inside another piece, is held by the floor's face beyond the ramp's foot
+    (issue 35), at the distance to that face's line."""
+    union, boundary = _solid(scene.name)
+    out = []
+    for poly in scene.obstacles.polygons:
+        for a, b in zip(poly, np.roll(poly, -1, axis=0), strict=True):
+            e = b - a
+            length = math.hypot(*e)
+            if length < 1e-12 or abs(e[1] / length - nx) + abs(-e[0] / length - ny) > 1e-9:
+                continue
+            line = nx * (px - a[0]) + ny * (py - a[1])
+            t = min(1.0, max(0.0, float(np.dot((px, py) - a, e)) / length**2))
+            if line < 0.0 or math.hypot(*((px, py) - (a + t * e))) >= MARGIN:
+                continue
+            for s in (t - 1e-6 / length, t + 1e-6 / length):
+                q = a + min(1.0, max(0.0, s)) * e
+                out_q = shapely.Point(q[0] + 1e-7 * nx, q[1] + 1e-7 * ny)
+                in_q = shapely.Point(q[0] - 1e-7 * nx, q[1] - 1e-7 * ny)
+                if (
+                    boundary.distance(shapely.Point(q)) < 1e-9
+                    and not union.contains(out_q)
+                    and union.contains(in_q)
+                ):
+                    out.append(line)
+                    break
+    return out
+
+
 def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[str, float]:
     """The kind of contact that explains the row best, and shapely's signed distance for it:
-    a part corner against a polygon; a polygon corner (at p - gap n) against the part; a disc
+    a part corner against a polygon, or in front of a surface face (:func:`_faces_ahead`); a
+    polygon corner (at p - gap n) against the part; a disc
     (centre at p - (gap + r) n) against the part."""
     candidates = [("unexplained", math.inf)]
     if np.min(np.hypot(world[:, 0] - px, world[:, 1] - py)) < 1e-12:
@@ -119,6 +153,7 @@ def _reference_gap(scene, polygons, part, world, gap, nx, ny, px, py) -> tuple[s
         depth = _solid_depth(scene, px, py)
         if depth is not None:
             candidates.append(("corner in the solid", -depth))
+        candidates += [("surface face ahead", g) for g in _faces_ahead(scene, px, py, nx, ny)]
     ox, oy = px - gap * nx, py - gap * ny
     for poly in scene.obstacles.polygons:
         if np.min(np.hypot(poly[:, 0] - ox, poly[:, 1] - oy)) < 1e-9:
