@@ -51,7 +51,7 @@ class ScreenSettings:
     perturbations: Perturbations = field(default_factory=Perturbations)
 
     def __post_init__(self) -> None:
-        checks = (
+        checks: tuple[tuple[str, float, float, float], ...] = (
             ("step", self.step, 1e-6, 0.1),
             ("t_max", self.t_max, 1e-3, 3600.0),
             ("works_p", self.works_p, 0.001, 0.999),

@@ -22,7 +22,7 @@ def markdown(data: dict) -> str:
     """The tables as Markdown (``data`` as :func:`write_outputs` stores it)."""
     t, s = data["tables"], data["settings"]
     engines = data["engines"]
-    first = next(iter(t["success"].values()), {}).get(engines[0], {})
+    first: dict = next(iter(t["success"].values()), {}).get(engines[0], {})
     entries = max(1, len(first) - 1)  # the entries and "both"
     family = (
         [f"Device family {data['family']['name']}: {data['family']['model']}"]

@@ -21,6 +21,7 @@ Box2D computes in float32: positions of up to ~60 m (the device at S = 4) carry 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import shapely
@@ -74,8 +75,8 @@ class Box2DCompoundSimulator:
         self.discs = pieces.discs * self.scale
         self.mass = pieces.mass
         self.inertia = pieces.inertia * self.scale**2
-        self.world = None
-        self.body = None
+        self.world: Any = None  # Box2D's world and body, made by reset()
+        self.body: Any = None
 
     def reset(self, start: Sequence[float]) -> None:
         """A new world with the part at ``start`` = (x, y, yaw, vx, vy, omega)."""
