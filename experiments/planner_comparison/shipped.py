@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from experiments.names import PRESET_NAMES
+
 PLANNERS = ["rrt", "rrt-greedy", "rrt-intermediate", "kpiece", "est"]
 LEVELS = ["geometric", "kinematic", "dynamic"]
 BUDGETS = {"geometric": 30000, "kinematic": 3000, "dynamic": 1000}
@@ -44,22 +46,7 @@ SUITES: dict[str, dict[str, Any]] = {
     "planners": {
         "name": "planners",
         "designs": [
-            *(
-                {"preset": name}
-                for name in (
-                    "table3",
-                    "fig4",
-                    "fig5a",
-                    "fig5b",
-                    "fig6a",
-                    "fig6b",
-                    "fig7a",
-                    "fig7b",
-                    "fig8a",
-                    "fig8b",
-                    "fig9",
-                )
-            ),
+            *({"preset": name} for name in ("table3", *(n for n in PRESET_NAMES if n != "table3"))),
             *({"halton": {"seed": 1, "index": i}} for i in (0, 1, 2, 3, 5, 7)),
             {"family": "fig1-cup"},
         ],

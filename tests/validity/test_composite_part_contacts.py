@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 import pytest
 import shapely
+from test_dynamic_level import _shapely_depth
 
 from feeders.composite_part import CompositePart, part_from_dict
 from feeders.cup import cup_part
@@ -178,20 +179,6 @@ def _ramp_scene(angle: float) -> Scene:
         starts={"s": (0.0, 1.0, 0.0)},
         goal=Goal(x_min=2.0, x_max=4.0, y_min=0.0, y_max=0.5, yaw=0.0, yaw_tol=0.1),
     )
-
-
-def _shapely_depth(scene: Scene, states: np.ndarray) -> float:
-    union = shapely.union_all([shapely.Polygon(p) for p in scene.obstacles.polygons])
-    shapely.prepare(union)
-    body = scene.part.body_vertices()
-    worst = 0.0
-    for x, y, th in states[:, :3]:
-        c, s = math.cos(th), math.sin(th)
-        for px, py in body @ np.array([[c, s], [-s, c]]) + (x, y):
-            point = shapely.Point(px, py)
-            if union.contains(point):
-                worst = max(worst, union.boundary.distance(point))
-    return worst
 
 
 def _slide_to_the_foot(

@@ -34,7 +34,12 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from experiments.bench.peers.mujoco_engine import PART_DEPTH, _vec, feeder_model_xml
+from experiments.bench.peers.mujoco_engine import (
+    PART_DEPTH,
+    MujocoFeederSimulator,
+    _vec,
+    feeder_model_xml,
+)
 from experiments.bench.peers.pymunk_engine import SEGMENT_RADIUS, PymunkFeederSimulator
 from feeders.part_properties import as_composite, mass_properties
 from feeders.part_shape import Part
@@ -109,35 +114,12 @@ def compound_model_xml(scene: Scene, h: float) -> str:
     return feeder_model_xml(scene, h, part_body=mujoco_part_body)
 
 
-class MujocoCompoundSimulator:
+class MujocoCompoundSimulator(MujocoFeederSimulator):
     """A device and any part in MuJoCo at step ``h`` (s) (:func:`compound_model_xml`); the
     state is (qpos, qvel) = (x, y, yaw, vx, vy, omega) of the centre of mass."""
 
     def __init__(self, scene: Scene, h: float):
-        import mujoco
-
-        self.mujoco = mujoco
-        self.h = float(h)
-        self.model = mujoco.MjModel.from_xml_string(compound_model_xml(scene, h))
-        self.data = mujoco.MjData(self.model)
-
-    def reset(self, start: Sequence[float]) -> None:
-        """The part at ``start`` = (x, y, yaw, vx, vy, omega), every other state reset."""
-        mujoco, data = self.mujoco, self.data
-        mujoco.mj_resetData(self.model, data)
-        data.qpos[:] = start[:3]
-        data.qvel[:] = start[3:6]
-        mujoco.mj_forward(self.model, data)
-
-    def run(self, out: np.ndarray) -> None:
-        """Take ``len(out)`` steps; row k of ``out`` gets the state after step k + 1."""
-        step, model, data = self.mujoco.mj_step, self.model, self.data
-        qpos, qvel = data.qpos, data.qvel
-        for k in range(out.shape[0]):
-            step(model, data)
-            row = out[k]
-            row[:3] = qpos
-            row[3:] = qvel
+        super().__init__(scene, h, compound_model_xml(scene, h))
 
 
 def add_pymunk_part(pymunk, space, scene: Scene, start: Sequence[float]):

@@ -198,12 +198,13 @@ class MujocoFeederSimulator:
     """A feeder scene in MuJoCo at step ``h`` (s) (:func:`feeder_model_xml`); the state is
     (qpos, qvel) = (x, y, yaw, vx, vy, omega) of the centre of mass."""
 
-    def __init__(self, scene: Scene, h: float):
+    def __init__(self, scene: Scene, h: float, xml: str | None = None):
+        """``xml``: the model (default :func:`feeder_model_xml` of the scene at h)."""
         import mujoco
 
         self.mujoco = mujoco
         self.h = float(h)
-        self.model = mujoco.MjModel.from_xml_string(feeder_model_xml(scene, h))
+        self.model = mujoco.MjModel.from_xml_string(xml or feeder_model_xml(scene, h))
         self.data = mujoco.MjData(self.model)
 
     def reset(self, start: Sequence[float]) -> None:
