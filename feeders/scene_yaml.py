@@ -250,12 +250,13 @@ def environment_from_dict(
         raise SceneError(message) from None
 
 
-def scene_from_dict(data: Any, name: str = "scene") -> Scene:
+def scene_from_dict(data: Any, name: str = "scene", check: bool = True) -> Scene:
     """Validate a parsed YAML document and build its scene, physically sane
-    (:func:`feeders.scene_checks.scene_problems`)."""
+    (:func:`feeders.scene_checks.scene_problems`; ``check=False``: its fields only, for a
+    caller that replaces the part and then calls :func:`checked_scene` itself)."""
     with field_errors_as(SceneError):
         scene = _scene_from_dict(data, name)
-    return checked_scene(scene)
+    return checked_scene(scene) if check else scene
 
 
 def checked_scene(scene: Scene) -> Scene:
