@@ -27,7 +27,9 @@ def wilson_interval(successes: int, trials: int, z: float = Z95) -> tuple[float,
     denominator = 1.0 + z2 / trials
     centre = (p + z2 / (2 * trials)) / denominator
     half = z / denominator * math.sqrt(p * (1 - p) / trials + z2 / (4 * trials * trials))
-    return max(0.0, centre - half), min(1.0, centre + half)
+    # the interval holds p itself: at k = 0 and k = n centre -+ half is 0 and 1 only to
+    # round-off (2.8e-17 above 0 at 0 of 7), and a figure's error bar refuses negative arms
+    return min(p, max(0.0, centre - half)), max(p, min(1.0, centre + half))
 
 
 def paired_exact_p(only_first: int, only_second: int) -> float:
