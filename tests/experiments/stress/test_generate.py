@@ -77,3 +77,18 @@ def test_a_composite_cases_start_is_checked_with_the_composite_part():
         for cx, cy, r in discs
     ]
     assert max(overlap_depth(solid, piece) for piece in pieces) <= START_OVERLAP
+
+
+def test_a_cup_hooked_on_a_wide_pin_gets_a_goal_the_scene_reader_takes():
+    """Composite case 106 of seed 42 (kinematic, a cup on a pin) could not be built: its goal
+    box, 0.2 wide around the start, lay inside the pin, and the scene reader refuses a goal no
+    part can reach. Reference: shapely, the goal box less the obstacles has area."""
+    case = generate_case(42, COMPOSITE_BASE + 106, LEVEL_NAMES)
+    scene = scene_of(case)
+    goal = scene.goal
+    solid = shapely.union_all(
+        [shapely.Polygon(p) for p in scene.obstacles.polygons]
+        + [shapely.Point(c[:2]).buffer(c[2], 64) for c in scene.obstacles.circles]
+    )
+    box = shapely.box(goal.x_min, goal.y_min, goal.x_max, goal.y_max)
+    assert box.difference(solid).area > 1e-6
