@@ -273,7 +273,6 @@ def _agreement(args: argparse.Namespace) -> int:
     if family_file is not None:
         return _family_agreement(args, family_file, trials, engines, out, scales)
     from experiments.bench.agreement.designs import default_designs, named_design
-    from experiments.bench.agreement.report import markdown, write_outputs, written_data
     from experiments.bench.agreement.suite import AgreementSettings, agreement_data
     from feeders.feeder import DegenerateDesign, build_feeder
 
@@ -295,14 +294,7 @@ def _agreement(args: argparse.Namespace) -> int:
         args.workers,
         progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
     )
-    written = written_data(data)
-    paths = write_outputs(data, out) if out is not None else []
-    if args.json:
-        print(json.dumps(written["tables"], indent=1))
-    else:
-        print(markdown(written))
-        _wrote(paths)
-    return 0
+    return _agreement_output(data, out, args.json)
 
 
 PYMUNK_RADIUS_RANGE = (1e-5, 0.05)  # length: the rounding of the walls' convex corners
@@ -364,7 +356,6 @@ def _family_agreement(
         family_agreement_data,
         family_design,
     )
-    from experiments.bench.agreement.report import markdown, write_outputs, written_data
     from experiments.bench.agreement.suite import AgreementSettings
     from experiments.bench.peers.compound import ROUNDING
     from feeders.device_family import load_family
@@ -401,9 +392,17 @@ def _family_agreement(
             args.peer_step,
             progress=lambda s: print(f"bench --agreement: {s}", file=sys.stderr),
         )
+    return _agreement_output(data, out, args.json)
+
+
+def _agreement_output(data: dict, out: Path | None, as_json: bool) -> int:
+    """The agreement's tables printed (Markdown, or JSON with ``--json``) and its files
+    written to ``out`` (none without), for the feeder's and a family's runs alike."""
+    from experiments.bench.agreement.report import markdown, write_outputs, written_data
+
     written = written_data(data)
     paths = write_outputs(data, out) if out is not None else []
-    if args.json:
+    if as_json:
         print(json.dumps(written["tables"], indent=1))
     else:
         print(markdown(written))

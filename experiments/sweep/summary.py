@@ -64,6 +64,19 @@ BOOTSTRAP_SAMPLES = 2000
 BEST_DESIGNS = 6
 
 
+def _recall(works: list, lost: list, basis: str) -> dict[str, Any]:
+    """The recall of the designs that work (``works``) less those a ladder threw away
+    (``lost``), with its Wilson interval, count and basis (what "works" was measured by)."""
+    ratio = _ratio(len(works) - len(lost), len(works))
+    return {
+        "recall": ratio["value"],
+        "recall_ci": ratio["ci"],
+        "recall_n": len(works),
+        "recall_basis": basis,
+        "thrown_away": lost,
+    }
+
+
 def _ratio(k: int, n: int) -> dict[str, Any]:
     low, high = wilson_interval(k, n)
     return {"value": k / n if n else None, "ci": [low, high]}
@@ -428,14 +441,7 @@ class _Replay:
             and all((d, level) in self.status for level in needed)
         ]
         lost = [d for d in works if any(self.status[(d, lv)] != "feasible" for lv in needed)]
-        ratio = _ratio(len(works) - len(lost), len(works))
-        return {
-            "recall": ratio["value"],
-            "recall_ci": ratio["ci"],
-            "recall_n": len(works),
-            "recall_basis": basis,
-            "thrown_away": lost,
-        }
+        return _recall(works, lost, basis)
 
 
 def _pipelines(ladder, samples, status, wall, replay: _Replay) -> list[dict[str, Any]]:
@@ -513,14 +519,7 @@ def _ladder_recall(ladder, truth_level, status, kept_up_to, replay: _Replay) -> 
         and all((d, level) in status for level in below)
     ]
     lost = [d for d in works if below and not kept_up_to(d, top - 1)]
-    ratio = _ratio(len(works) - len(lost), len(works))
-    return {
-        "recall": ratio["value"],
-        "recall_ci": ratio["ci"],
-        "recall_n": len(works),
-        "recall_basis": basis,
-        "thrown_away": lost,
-    }
+    return _recall(works, lost, basis)
 
 
 def _reached(d: int, rungs: list[str], status) -> int:
